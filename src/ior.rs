@@ -1,0 +1,1 @@
+//! ior (work in progress).

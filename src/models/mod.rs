@@ -1,0 +1,1 @@
+//! BRDF models (work in progress).
