@@ -57,6 +57,7 @@ mod math;
 
 pub mod analysis;
 pub mod error;
+pub mod fast;
 pub mod fresnel;
 pub mod ior;
 pub mod masking;

@@ -1,0 +1,1 @@
+//! Fast approximations (work in progress).
