@@ -56,6 +56,7 @@ compile_error!("brdf needs a math backend: enable the `std` (default) or the `li
 mod math;
 
 pub mod analysis;
+pub mod batch;
 pub mod error;
 pub mod fast;
 pub mod fresnel;
@@ -68,5 +69,6 @@ pub mod real;
 pub mod vec3;
 
 pub use error::Error;
+pub use models::Brdf;
 pub use real::{Real, Scalar, f32x4, f32x8, f32x16, f64x4};
 pub use vec3::Vec3;

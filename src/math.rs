@@ -40,10 +40,6 @@ macro_rules! std_backend {
                 x.cos()
             }
             #[inline(always)]
-            pub(crate) fn atan2(y: $t, x: $t) -> $t {
-                y.atan2(x)
-            }
-            #[inline(always)]
             pub(crate) fn floor(x: $t) -> $t {
                 x.floor()
             }
@@ -59,7 +55,7 @@ macro_rules! std_backend {
 #[cfg(not(feature = "std"))]
 macro_rules! libm_backend {
     ($m:ident, $t:ty, $sqrt:ident, $exp:ident, $exp2:ident, $ln:ident, $log2:ident, $pow:ident,
-     $sin:ident, $cos:ident, $atan2:ident, $floor:ident, $fma:ident) => {
+     $sin:ident, $cos:ident, $floor:ident, $fma:ident) => {
         pub(crate) mod $m {
             #[inline(always)]
             pub(crate) fn sqrt(x: $t) -> $t {
@@ -94,10 +90,6 @@ macro_rules! libm_backend {
                 libm::$cos(x)
             }
             #[inline(always)]
-            pub(crate) fn atan2(y: $t, x: $t) -> $t {
-                libm::$atan2(y, x)
-            }
-            #[inline(always)]
             pub(crate) fn floor(x: $t) -> $t {
                 libm::$floor(x)
             }
@@ -116,7 +108,7 @@ std_backend!(f32m, f32);
 std_backend!(f64m, f64);
 #[cfg(not(feature = "std"))]
 libm_backend!(
-    f32m, f32, sqrtf, expf, exp2f, logf, log2f, powf, sinf, cosf, atan2f, floorf, fmaf
+    f32m, f32, sqrtf, expf, exp2f, logf, log2f, powf, sinf, cosf, floorf, fmaf
 );
 #[cfg(not(feature = "std"))]
-libm_backend!(f64m, f64, sqrt, exp, exp2, log, log2, pow, sin, cos, atan2, floor, fma);
+libm_backend!(f64m, f64, sqrt, exp, exp2, log, log2, pow, sin, cos, floor, fma);
