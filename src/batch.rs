@@ -119,7 +119,11 @@ pub struct Unavailable(pub Isa);
 
 impl core::fmt::Display for Unavailable {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        write!(f, "instruction set {:?} is not available on this CPU", self.0)
+        write!(
+            f,
+            "instruction set {:?} is not available on this CPU",
+            self.0
+        )
     }
 }
 
@@ -136,13 +140,19 @@ fn kernel<B: Brdf<f32, N>, const N: usize>(
 ) {
     let n = wi.len();
     assert!(wo.len() == n, "batch: wi and wo differ in length");
-    assert!(out.iter().all(|c| c.len() == n), "batch: output length differs from input");
+    assert!(
+        out.iter().all(|c| c.len() == n),
+        "batch: output length differs from input"
+    );
     // Re-slice to `n` so the optimizer drops the per-element bounds checks.
     let (ix, iy, iz) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
     let (ox, oy, oz) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
     let out = out.map(|c| &mut c[..n]);
     for i in 0..n {
-        let f = brdf.eval(Vec3::new(ix[i], iy[i], iz[i]), Vec3::new(ox[i], oy[i], oz[i]));
+        let f = brdf.eval(
+            Vec3::new(ix[i], iy[i], iz[i]),
+            Vec3::new(ox[i], oy[i], oz[i]),
+        );
         for c in 0..N {
             out[c][i] = f[c];
         }
@@ -259,11 +269,18 @@ pub fn eval_glam<B: Brdf<f32, N>, const N: usize>(
     out: &mut [[f32; N]],
 ) {
     const CHUNK: usize = 256;
-    assert!(wi.len() == wo.len() && wo.len() == out.len(), "eval_glam: lengths differ");
+    assert!(
+        wi.len() == wo.len() && wo.len() == out.len(),
+        "eval_glam: lengths differ"
+    );
     let isa = Isa::detect();
     let mut soa = [[0.0f32; CHUNK]; 6];
     let mut res = [[0.0f32; CHUNK]; N];
-    for ((wi, wo), out) in wi.chunks(CHUNK).zip(wo.chunks(CHUNK)).zip(out.chunks_mut(CHUNK)) {
+    for ((wi, wo), out) in wi
+        .chunks(CHUNK)
+        .zip(wo.chunks(CHUNK))
+        .zip(out.chunks_mut(CHUNK))
+    {
         let n = wi.len();
         for (i, (a, b)) in wi.iter().zip(wo).enumerate() {
             soa[0][i] = a.x;

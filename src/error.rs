@@ -29,8 +29,15 @@ impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Error::NotFinite { param } => write!(f, "parameter `{param}` must be finite"),
-            Error::OutOfDomain { param, value, domain } => {
-                write!(f, "parameter `{param}` = {value} is outside its domain {domain}")
+            Error::OutOfDomain {
+                param,
+                value,
+                domain,
+            } => {
+                write!(
+                    f,
+                    "parameter `{param}` = {value} is outside its domain {domain}"
+                )
             }
         }
     }
@@ -52,7 +59,11 @@ pub(crate) fn check<T: Into<f64> + Copy>(
     if !v.is_finite() {
         Err(Error::NotFinite { param })
     } else if !ok(v) {
-        Err(Error::OutOfDomain { param, value: v, domain })
+        Err(Error::OutOfDomain {
+            param,
+            value: v,
+            domain,
+        })
     } else {
         Ok(value)
     }
@@ -66,10 +77,7 @@ pub(crate) fn positive<T: Into<f64> + Copy>(param: &'static str, value: T) -> Re
 
 /// `value ∈ [0, ∞)`.
 #[inline]
-pub(crate) fn non_negative<T: Into<f64> + Copy>(
-    param: &'static str,
-    value: T,
-) -> Result<T, Error> {
+pub(crate) fn non_negative<T: Into<f64> + Copy>(param: &'static str, value: T) -> Result<T, Error> {
     check(param, value, "[0, ∞)", |v| v >= 0.0)
 }
 
@@ -88,11 +96,21 @@ mod tests {
 
     #[test]
     fn rejects_nan_infinite_and_out_of_domain() {
-        assert_eq!(positive("eta", f64::NAN), Err(Error::NotFinite { param: "eta" }));
-        assert_eq!(non_negative("k", f32::INFINITY), Err(Error::NotFinite { param: "k" }));
+        assert_eq!(
+            positive("eta", f64::NAN),
+            Err(Error::NotFinite { param: "eta" })
+        );
+        assert_eq!(
+            non_negative("k", f32::INFINITY),
+            Err(Error::NotFinite { param: "k" })
+        );
         assert_eq!(
             positive("shininess", 0.0f32),
-            Err(Error::OutOfDomain { param: "shininess", value: 0.0, domain: "(0, ∞)" })
+            Err(Error::OutOfDomain {
+                param: "shininess",
+                value: 0.0,
+                domain: "(0, ∞)"
+            })
         );
         assert_eq!(unit_interval("f0", 1.0), Ok(1.0));
         assert!(unit_interval("f0", 1.0 + 1e-12).is_err());

@@ -111,4 +111,6 @@ libm_backend!(
     f32m, f32, sqrtf, expf, exp2f, logf, log2f, powf, sinf, cosf, floorf, fmaf
 );
 #[cfg(not(feature = "std"))]
-libm_backend!(f64m, f64, sqrt, exp, exp2, log, log2, pow, sin, cos, floor, fma);
+libm_backend!(
+    f64m, f64, sqrt, exp, exp2, log, log2, pow, sin, cos, floor, fma
+);

@@ -78,7 +78,8 @@ impl<R: Real> Vec3<R> {
     #[inline(always)]
     #[must_use]
     pub fn reflect(self, n: Self) -> Self {
-        n.scale(R::from_f64(2.0) * self.dot(n)).add(self.scale(-R::one()))
+        n.scale(R::from_f64(2.0) * self.dot(n))
+            .add(self.scale(-R::one()))
     }
 }
 

@@ -13,7 +13,11 @@ pub fn config(default: u32) -> ProptestConfig {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(default);
-    ProptestConfig { cases, failure_persistence: None, ..ProptestConfig::default() }
+    ProptestConfig {
+        cases,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    }
 }
 
 /// Uniform sample in [0, 1], with the end points and values a hair from them drawn often:
@@ -67,13 +71,21 @@ pub fn ulps<S: Scalar>(a: S, b: S) -> u64 {
     if size_of::<S>() == 4 {
         let key = |x: f32| {
             let i = x.to_bits() as i32;
-            if i < 0 { i32::MIN.wrapping_sub(i) as i64 } else { i as i64 }
+            if i < 0 {
+                i32::MIN.wrapping_sub(i) as i64
+            } else {
+                i as i64
+            }
         };
         (key(a as f32) - key(b as f32)).unsigned_abs()
     } else {
         let key = |x: f64| {
             let i = x.to_bits() as i64;
-            if i < 0 { (i64::MIN.wrapping_sub(i)) as i128 } else { i as i128 }
+            if i < 0 {
+                (i64::MIN.wrapping_sub(i)) as i128
+            } else {
+                i as i128
+            }
         };
         (key(a) - key(b)).unsigned_abs() as u64
     }
@@ -82,7 +94,9 @@ pub fn ulps<S: Scalar>(a: S, b: S) -> u64 {
 /// Packs up to `R::LANES` rows of arguments into one lane value per argument, repeating the
 /// last row to fill the register.
 pub fn pack<R: Real, const K: usize>(rows: &[[f64; K]]) -> [R; K] {
-    core::array::from_fn(|j| R::from_fn(|l| <R::Scalar as Scalar>::of(rows[l.min(rows.len() - 1)][j])))
+    core::array::from_fn(|j| {
+        R::from_fn(|l| <R::Scalar as Scalar>::of(rows[l.min(rows.len() - 1)][j]))
+    })
 }
 
 /// Asserts that a formula evaluated on every SIMD lane type equals the scalar result of the
@@ -172,8 +186,16 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, panels: usize, order: u
 
 /// ∫ over the points `breaks` (sorted): composite Gauss-Legendre on each sub-interval, so a
 /// caller puts panel edges where the integrand is sharp (e.g. near a narrow lobe's peak).
-pub fn integrate_pieces(f: impl Fn(f64) -> f64, breaks: &[f64], panels: usize, order: usize) -> f64 {
-    breaks.windows(2).map(|w| integrate(&f, w[0], w[1], panels, order)).sum()
+pub fn integrate_pieces(
+    f: impl Fn(f64) -> f64,
+    breaks: &[f64],
+    panels: usize,
+    order: usize,
+) -> f64 {
+    breaks
+        .windows(2)
+        .map(|w| integrate(&f, w[0], w[1], panels, order))
+        .sum()
 }
 
 #[test]
