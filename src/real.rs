@@ -29,7 +29,9 @@ use core::ops::{
 };
 
 use crate::math::{f32m, f64m};
+use wide::bytemuck::cast;
 pub use wide::{f32x4, f32x8, f32x16, f64x4};
+use wide::{u32x4, u32x8, u32x16, u64x4};
 
 /// A number or a SIMD register of numbers on which every formula of the crate runs.
 ///
@@ -73,7 +75,10 @@ pub trait Real:
     /// The element type of one lane: `f32` or `f64`.
     type Scalar: Scalar;
     /// Result of a comparison: `bool` for scalars, an all-ones/all-zeros lane vector for SIMD.
-    type Mask: Copy + BitAnd<Output = Self::Mask> + BitOr<Output = Self::Mask> + Not<Output = Self::Mask>;
+    type Mask: Copy
+        + BitAnd<Output = Self::Mask>
+        + BitOr<Output = Self::Mask>
+        + Not<Output = Self::Mask>;
     /// Number of lanes (1 for scalars).
     const LANES: usize;
 
@@ -114,6 +119,54 @@ pub trait Real:
     fn cos(self) -> Self;
     /// Largest integer not greater than `self`.
     fn floor(self) -> Self;
+
+    /// Splits a finite nonzero number into mantissa and exponent: `|self| = m·2ᵉ` with
+    /// `m ∈ [1, 2)` and `e` an integer-valued float, read from the bits (no library call,
+    /// branch-free). The sign is ignored.
+    ///
+    /// ```text
+    /// exponent_split(x) = (m, e),   |x| = m · 2ᵉ,   1 ≤ m < 2,   e = ⌊log₂|x|⌋
+    /// ```
+    ///
+    /// Exact for normal numbers (`e ∈ [−126, 127]` for `f32`, `[−1022, 1023]` for `f64`).
+    /// Outside that domain it returns the raw fields: `0` and subnormals give
+    /// `e = −127` / `−1023` (and `m` built from the subnormal fraction bits), `∞` and NaN give
+    /// `e = 128` / `1024`. The building block of range reduction for logarithms (J.-M. Muller,
+    /// *Elementary Functions: Algorithms and Implementation*, 3rd ed., Birkhäuser 2016, §11).
+    fn exponent_split(self) -> (Self, Self);
+    /// `self · 2ᵉ` for an integer-valued `e`, by building `2ᵉ` in the exponent field (the
+    /// inverse of [`Real::exponent_split`]; no library call, branch-free).
+    ///
+    /// ```text
+    /// ldexp(x, e) = x · 2ᵉ      (one correctly rounded multiplication)
+    /// ```
+    ///
+    /// Domain: `e` integer-valued in `[−127, 128]` (`f32`) or `[−1023, 1024]` (`f64`). Inside
+    /// the normal range `2ᵉ` is exact; the end points encode `2ᵉ` as `0` (so the result is
+    /// `x·0 = 0`: flush to zero) and `+∞` (the result overflows to `±∞`; NaN if `x = 0`).
+    /// Other `e` (non-integer or outside the range) give unspecified finite or infinite values.
+    fn ldexp(self, e: Self) -> Self;
+    /// A cheap estimate `y ≈ 1/√self` for positive normal `self`, to be refined by Newton
+    /// steps (see `brdf::fast::rsqrt`).
+    ///
+    /// * `f32`, `f64`, [`f64x4`]: the bit trick `y = bits⁻¹(R − bits(x)/2)` (the integer
+    ///   view of a float is a scaled, shifted `log₂ x`), with the magic constant
+    ///   `R = 0x5F37_5A80` (`f32`) / `0x5FE6_EB50_0000_0000` (`f64`, the same constant for the
+    ///   wider fields) found by a search minimising the error after one Newton step
+    ///   (`tests/fast.rs` repeats it). Relative error ≤ 3.43·10⁻² (C. Lomont, "Fast inverse
+    ///   square root", tech. report, Purdue 2003, derived 0x5F375A86 the same way).
+    ///   Bit-identical between `f64` and `f64x4` lanes.
+    /// * [`f32x4`], [`f32x8`], [`f32x16`]: `wide`'s `recip_sqrt`, i.e. the hardware estimate
+    ///   `rsqrtps` on x86 with SSE/AVX (relative error ≤ 1.5·2⁻¹² ≈ 3.7·10⁻⁴ by Intel's
+    ///   specification; the exact bits differ between CPU vendors), and the exact `1/√x` where
+    ///   `wide` has no estimate instruction (`f32x16` under AVX-512, NEON, WASM, portable
+    ///   fallback). Either way the error is ≤ 3.7·10⁻⁴, so lanes and the `f32` scalar differ.
+    ///
+    /// `wide`'s `f64x4::recip_sqrt` is an exact division `1/√x` (there is no double-precision
+    /// estimate instruction before AVX-512's `rsqrt14`), which is why [`f64x4`] uses the bit
+    /// trick here. Outside the domain (`0`, subnormals, negatives, `∞`, NaN) the value is
+    /// unspecified.
+    fn rsqrt_estimate(self) -> Self;
 
     /// `self < other`, lane-wise.
     fn lt(self, other: Self) -> Self::Mask;
@@ -191,7 +244,7 @@ pub trait Scalar: Real<Scalar = Self, Mask = bool> + PartialOrd + Into<f64> + De
 }
 
 macro_rules! impl_scalar {
-    ($t:ty, $m:ident) => {
+    ($t:ty, $m:ident, $mb:expr, $emask:expr, $fmask:expr, $onebits:expr, $one_b:expr, $eoff:expr, $rsqrt_magic:expr) => {
         impl Real for $t {
             type Scalar = $t;
             type Mask = bool;
@@ -274,6 +327,21 @@ macro_rules! impl_scalar {
                 $m::floor(self)
             }
             #[inline(always)]
+            fn exponent_split(self) -> (Self, Self) {
+                let b = self.to_bits();
+                let e = <$t>::from_bits($one_b | ((b >> $mb) & $emask)) - $eoff;
+                let m = <$t>::from_bits((b & $fmask) | $onebits);
+                (m, e)
+            }
+            #[inline(always)]
+            fn ldexp(self, e: Self) -> Self {
+                self * <$t>::from_bits((e + $eoff).to_bits() << $mb)
+            }
+            #[inline(always)]
+            fn rsqrt_estimate(self) -> Self {
+                <$t>::from_bits($rsqrt_magic - (self.to_bits() >> 1))
+            }
+            #[inline(always)]
             fn lt(self, other: Self) -> bool {
                 self < other
             }
@@ -321,11 +389,34 @@ macro_rules! impl_scalar {
     };
 }
 
-impl_scalar!(f32, f32m);
-impl_scalar!(f64, f64m);
+// 8_388_735 = 2²³ + 127 and 4_503_599_627_371_519 = 2⁵² + 1023: adding them to an
+// integer-valued exponent puts the biased exponent in the low fraction bits.
+impl_scalar!(
+    f32,
+    f32m,
+    23,
+    0xFF,
+    0x007F_FFFF,
+    0x3F80_0000,
+    0x4B00_0000,
+    8_388_735.0_f32,
+    0x5F37_5A80_u32
+);
+impl_scalar!(
+    f64,
+    f64m,
+    52,
+    0x7FF,
+    0x000F_FFFF_FFFF_FFFF,
+    0x3FF0_0000_0000_0000,
+    0x4330_0000_0000_0000,
+    4_503_599_627_371_519.0_f64,
+    0x5FE6_EB50_0000_0000_u64
+);
 
 macro_rules! impl_lanes {
-    ($v:ty, $t:ty, $n:expr, $pow:ident) => {
+    ($v:ty, $t:ty, $n:expr, $pow:ident, $u:ty, $mb:expr, $emask:expr, $fmask:expr, $onebits:expr,
+     $one_b:expr, $eoff:expr, $rsqrt:expr) => {
         impl Real for $v {
             type Scalar = $t;
             type Mask = $v;
@@ -400,6 +491,24 @@ macro_rules! impl_lanes {
                 <$v>::floor(self)
             }
             #[inline(always)]
+            fn exponent_split(self) -> (Self, Self) {
+                let b: $u = cast(self);
+                let biased = b.unbounded_shr_scalar($mb) & <$u>::splat($emask);
+                let e = cast::<$u, $v>(biased | <$u>::splat($one_b)) - <$v>::splat($eoff);
+                let m = cast::<$u, $v>((b & <$u>::splat($fmask)) | <$u>::splat($onebits));
+                (m, e)
+            }
+            #[inline(always)]
+            fn ldexp(self, e: Self) -> Self {
+                let b: $u = cast(e + <$v>::splat($eoff));
+                self * cast::<$u, $v>(b.unbounded_shl_scalar($mb))
+            }
+            #[inline(always)]
+            fn rsqrt_estimate(self) -> Self {
+                let f: fn($v) -> $v = $rsqrt;
+                f(self)
+            }
+            #[inline(always)]
             fn lt(self, other: Self) -> Self {
                 self.simd_lt(other)
             }
@@ -439,10 +548,44 @@ macro_rules! impl_lanes {
     };
 }
 
-impl_lanes!(f32x4, f32, 4, powf_simd);
-impl_lanes!(f32x8, f32, 8, powf_simd);
-impl_lanes!(f32x16, f32, 16, powf_simd);
-impl_lanes!(f64x4, f64, 4, powf_simd);
+macro_rules! impl_f32_lanes {
+    ($v:ty, $u:ty, $n:expr) => {
+        impl_lanes!(
+            $v,
+            f32,
+            $n,
+            powf_simd,
+            $u,
+            23,
+            0xFF,
+            0x007F_FFFF,
+            0x3F80_0000,
+            0x4B00_0000,
+            8_388_735.0,
+            |x| x.recip_sqrt()
+        );
+    };
+}
+impl_f32_lanes!(f32x4, u32x4, 4);
+impl_f32_lanes!(f32x8, u32x8, 8);
+impl_f32_lanes!(f32x16, u32x16, 16);
+impl_lanes!(
+    f64x4,
+    f64,
+    4,
+    powf_simd,
+    u64x4,
+    52,
+    0x7FF,
+    0x000F_FFFF_FFFF_FFFF,
+    0x3FF0_0000_0000_0000,
+    0x4330_0000_0000_0000,
+    4_503_599_627_371_519.0,
+    |x| {
+        let b: u64x4 = cast(x);
+        cast(u64x4::splat(0x5FE6_EB50_0000_0000) - b.unbounded_shr_scalar(1))
+    }
+);
 
 #[cfg(test)]
 mod tests {
