@@ -1,12 +1,1019 @@
-//! Fresnel reflectance.
+//! Fresnel reflectance: exact dielectric and conductor equations, Cook-Torrance's (g, c)
+//! form, Schlick's approximation, and two models for metals (Hoffman's F82-tint and
+//! Gulbrandsen's artist-friendly reflectivity / edge-tint mapping).
 //!
-//! (Filled in by the Fresnel work; the trait below is the contract the models build on.)
+//! Every formula is written once, generic over [`Real`], without branches on lane values, so
+//! it evaluates on `f32`, `f64` and SIMD lanes alike. The [`FresnelTerm`] implementations
+//! ([`Schlick`], [`Dielectric`], [`Conductor`], [`F82Tint`], [`NoFresnel`]) are what the
+//! BRDF models consume: validated once at construction, with per-material constants
+//! precomputed.
+//!
+//! # Conventions
+//!
+//! * `cos_theta_i = cos θi`, the cosine between the incident direction and the normal of the
+//!   interface (for a microfacet model, `cos θd = wi·wm`). `eta = η_t / η_i`, the relative
+//!   IOR of the far side over the near side; the dielectric functions flip it (`1/eta`)
+//!   when `cos_theta_i < 0` (light arriving from inside).
+//! * A conductor's complex IOR is `eta + i·k` with `k ≥ 0` (time dependence `e^{−iωt}`, as
+//!   pbrt). The seed talk (Gotanda 2009) writes `n − iκ`, the conjugate: reflectances are the
+//!   same, phases of the complex amplitudes are conjugated.
+//! * Amplitude signs follow the seed talk (and Fresnel's original, "Verdet" convention):
+//!
+//!   ```text
+//!   r_s = (cos θi − η cos θt) / (cos θi + η cos θt)
+//!   r_p = (cos θt − η cos θi) / (cos θt + η cos θi)      (r_p = r_s at normal incidence)
+//!   t_s = 2 cos θi / (cos θi + η cos θt)
+//!   t_p = 2 cos θi / (η cos θi + cos θt)
+//!   ```
+//!
+//!   pbrt-v4's `FrDielectric` uses `r_perp = r_s` and `r_parl = (η cos θi − cos θt) /
+//!   (η cos θi + cos θt) = −r_p` (Hecht's convention): the reflectance `(r_s² + r_p²)/2`
+//!   is the same.
+//! * Everything is computed from `g = η cos θt = √(η² − 1 + cos²θi)` (Cook & Torrance 1982),
+//!   which is exact at `η = 1` and reaches total internal reflection (TIR) when `g² < 0`.
+//!
+//! # Accuracy of the approximations for metals
+//!
+//! Maximum absolute error over `cos θ ∈ [0, 1]` against the exact [`conductor`] Fresnel, per
+//! channel (R, G, B at 650/550/450 nm), for the metal presets of [`crate::ior::METALS_RGB`]
+//! (measured by `tests/fresnel.rs::metal_models_error_table`, which asserts these bounds):
+//!
+//! | metal      | Schlick (R, G, B)        | F82-tint (R, G, B)       |
+//! |------------|--------------------------|--------------------------|
+//! | (see `tests/fresnel.rs` — filled in below by measurement) | | |
+//!
+//! Gulbrandsen's mapping is a re-parametrization of the exact equations: its error against
+//! the exact Fresnel is rounding only, as long as the preset's edge tint `g` lies in
+//! `[0, 1]` (see [`gulbrandsen_from_nk`]).
+//!
+//! # References
+//!
+//! * A. Fresnel (1823); M. Born, E. Wolf, *Principles of Optics*, 7th ed., §1.5.
+//! * R. L. Cook, K. E. Torrance, "A Reflectance Model for Computer Graphics", ACM ToG 1(1), 1982.
+//! * C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering", CGF 13(3), 1994.
+//! * N. Hoffman, "Fresnel Equations Considered Harmful", EGSR/MAM workshop 2019; A. Kutz et al.,
+//!   "Novel aspects of the Adobe Standard Material", 2021; OpenPBR Surface specification 1.0, 2024.
+//! * O. Gulbrandsen, "Artist Friendly Metallic Fresnel", JCGT 3(4), 2014.
+//! * M. Pharr, W. Jakob, G. Humphreys, *Physically Based Rendering*, 4th ed., §9.3.
+//! * Y. Gotanda, "Basic of Reflectance", tri-Ace, 2009 (the seed talk).
 
-use crate::Real;
+use num_complex::Complex;
+
+use crate::error::{self, Error};
+use crate::{Real, Scalar};
 
 /// A Fresnel term as a BRDF model uses it: reflectance per colour channel as a function of
 /// `cos θd = wi·wm`, the cosine between the light and the microfacet normal.
 pub trait FresnelTerm<R: Real, const N: usize> {
     /// Reflectance per channel, each in `[0, 1]`, for `cos_theta_d ∈ [0, 1]`.
     fn eval(&self, cos_theta_d: R) -> [R; N];
+}
+
+// ---------------------------------------------------------------------------------------
+// Dielectric
+// ---------------------------------------------------------------------------------------
+
+/// The Fresnel amplitude coefficients of a dielectric interface, and the geometry they came
+/// from. Returned by [`dielectric_amplitudes`].
+///
+/// Sign convention: the seed talk's (see the [module docs](self)); `r_p = r_s` at normal
+/// incidence. pbrt's `r_parl` is `−r_p`, its `r_perp` is `r_s`.
+///
+/// Beyond the critical angle (TIR) the true amplitudes are complex of modulus 1; this real
+/// struct then holds their values at the critical angle, `r_s = 1`, `r_p = −1`, and
+/// `t_s = t_p = 0` (no power is transmitted; the evanescent field is not a transmission
+/// coefficient). For the phases use [`conductor_amplitudes`] with `k = 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Amplitudes<R> {
+    /// s (perpendicular, TE) amplitude reflection coefficient, in `[−1, 1]`.
+    pub r_s: R,
+    /// p (parallel, TM) amplitude reflection coefficient, in `[−1, 1]`.
+    pub r_p: R,
+    /// s amplitude transmission coefficient, `2 cos θi / (cos θi + η cos θt)`.
+    pub t_s: R,
+    /// p amplitude transmission coefficient, `2 cos θi / (η cos θi + cos θt)`.
+    pub t_p: R,
+    /// `|cos θi|`, clamped to `[0, 1]`.
+    pub cos_theta_i: R,
+    /// `cos θt ≥ 0` of the refracted direction (its magnitude; `0` under TIR).
+    pub cos_theta_t: R,
+    /// The relative IOR actually used: `eta`, or `1/eta` for incidence from inside.
+    pub eta: R,
+}
+
+impl<R: Real> Amplitudes<R> {
+    /// Unpolarized reflectance `r = (r_s² + r_p²) / 2` (the seed's `r`, pbrt's
+    /// `FrDielectric`). Equals `1` under total internal reflection.
+    #[inline]
+    #[must_use]
+    pub fn reflectance(&self) -> R {
+        (self.r_s * self.r_s + self.r_p * self.r_p) * R::from_f64(0.5)
+    }
+
+    /// Unpolarized power transmittance computed from the transmission amplitudes:
+    ///
+    /// ```text
+    /// T_s = (η cos θt / cos θi) t_s²,   T_p = (η cos θt / cos θi) t_p²,   t = (T_s + T_p)/2
+    /// ```
+    ///
+    /// The factor `η cos θt / cos θi` converts the ratio of field amplitudes into a ratio of
+    /// power fluxes through the interface (the refracted beam has a different cross-section
+    /// and travels in a medium of another impedance); the seed talk folds its square root
+    /// into its `t_s`, `t_p`. Energy conservation gives `t = 1 − r`
+    /// (`tests/fresnel.rs` checks it over the whole domain). At exactly grazing incidence
+    /// (`cos θi = 0`) the limit is used: `0`, or `1` when `η = 1`.
+    #[inline]
+    #[must_use]
+    pub fn transmittance(&self) -> R {
+        let c = self.cos_theta_i;
+        let g = self.eta * self.cos_theta_t;
+        let factor = g / c;
+        let t = factor * (self.t_s * self.t_s + self.t_p * self.t_p) * R::from_f64(0.5);
+        // c = 0: no power crosses unless the interface is index-matched (g = 0, no TIR).
+        let limit = R::select(
+            g.gt(R::zero()) | self.t_s.eq(R::zero()),
+            R::zero(),
+            R::one(),
+        );
+        R::select(c.gt(R::zero()), t, limit)
+    }
+}
+
+/// Fresnel amplitude coefficients `r_s, r_p, t_s, t_p` of a smooth dielectric interface.
+///
+/// ```text
+/// η' = η if cos θi ≥ 0, 1/η otherwise;   c = min(|cos θi|, 1)
+/// g² = η'² − 1 + c²  (= η'² cos² θt);    g = √g²          TIR when g² < 0
+/// r_s = (c − g) / (c + g)                r_p = (g − η'² c) / (g + η'² c)
+/// t_s = 2c / (c + g)                     t_p = 2η' c / (η'² c + g)
+/// ```
+///
+/// (The seed's forms with `n₁ = 1, n₂ = η'`, multiplied through by `η'`; `g = η' cos θt`.)
+///
+/// * Domain: `eta ∈ (0, ∞)` with `eta²` finite and normal in the lane precision; any
+///   `cos_theta_i` (values a rounding step outside `[−1, 1]` are clamped).
+/// * Normal incidence: `r_s = r_p = (1 − η)/(1 + η)`. Grazing (`c = 0`, `η ≠ 1`):
+///   `r_s = −1, r_p = 1`. Index-matched (`η = 1`): `r = 0, t = 1` everywhere, including `c = 0`.
+/// * Under TIR: see [`Amplitudes`] (`r_s = 1`, `r_p = −1`, `t_s = t_p = 0`).
+///
+/// Reference: Born & Wolf, *Principles of Optics*, §1.5.2; Cook & Torrance 1982 for the
+/// `g` form; pbrt-v4 §9.3.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::dielectric_amplitudes;
+/// let a = dielectric_amplitudes(1.0_f64, 1.5);
+/// assert!((a.r_s + 0.2).abs() < 1e-15 && (a.r_p + 0.2).abs() < 1e-15);
+/// assert!((a.reflectance() + a.transmittance() - 1.0).abs() < 1e-15);
+/// ```
+#[inline]
+#[must_use]
+pub fn dielectric_amplitudes<R: Real>(cos_theta_i: R, eta: R) -> Amplitudes<R> {
+    let eta = R::select(cos_theta_i.lt(R::zero()), eta.recip(), eta);
+    let c = cos_theta_i.abs().min(R::one());
+    let g2 = (eta - R::one()).mul_add(eta + R::one(), c * c);
+    let tir = g2.lt(R::zero());
+    let g = g2.safe_sqrt();
+    let eta2 = eta * eta;
+    let den_s = c + g;
+    let den_p = eta2.mul_add(c, g);
+    // den_s = 0 only for c = 0 and g = 0: η = 1 at grazing (index-matched) or the critical
+    // angle at grazing; the TIR select below handles the latter.
+    let ok = den_s.gt(R::zero());
+    let two_c = c + c;
+    let r_s = R::select(ok, (c - g) / den_s, R::zero());
+    let r_p = R::select(ok, eta2.mul_add(-c, g) / den_p, R::zero());
+    let t_s = R::select(ok, two_c / den_s, R::one());
+    let t_p = R::select(ok, eta * two_c / den_p, R::one());
+    Amplitudes {
+        r_s: R::select(tir, R::one(), r_s),
+        r_p: R::select(tir, -R::one(), r_p),
+        t_s: R::select(tir, R::zero(), t_s),
+        t_p: R::select(tir, R::zero(), t_p),
+        cos_theta_i: c,
+        cos_theta_t: g / eta,
+        eta,
+    }
+}
+
+/// Unpolarized Fresnel reflectance of a smooth dielectric interface.
+///
+/// ```text
+/// r = (r_s² + r_p²) / 2      (amplitudes of dielectric_amplitudes)
+///   = 1 under total internal reflection (g² = η'² − 1 + cos²θi < 0)
+/// ```
+///
+/// * Domain: `eta ∈ (0, ∞)` (relative IOR `η_t/η_i`), any `cos_theta_i`; negative cosines
+///   mean incidence from inside and use `1/eta`. Result in `[0, 1]`.
+/// * `r(1, η) = ((η − 1)/(η + 1))²`, `r(0, η ≠ 1) = 1`, `r(·, 1) = 0`.
+///
+/// Reference: Born & Wolf, *Principles of Optics*, §1.5.2; pbrt-v4 §9.3.1 (`FrDielectric`).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::dielectric;
+/// assert!((dielectric(1.0_f64, 1.5) - 0.04).abs() < 1e-15);
+/// assert_eq!(dielectric(0.1_f32, 1.0 / 1.5), 1.0); // beyond the critical angle: TIR
+/// assert_eq!(dielectric(-0.1_f32, 1.5), 1.0); // same interface, seen from inside
+/// ```
+#[doc(alias = "FrDielectric")]
+#[inline]
+#[must_use]
+pub fn dielectric<R: Real>(cos_theta_i: R, eta: R) -> R {
+    dielectric_amplitudes(cos_theta_i, eta).reflectance()
+}
+
+/// Unpolarized power transmittance of a smooth dielectric interface, `t = 1 − r`.
+///
+/// Energy conservation at a lossless interface; [`Amplitudes::transmittance`] computes the
+/// same quantity from `t_s`, `t_p` and the `η cos θt / cos θi` factor (tests compare them).
+/// Same domain as [`dielectric`]; `0` under TIR.
+#[inline]
+#[must_use]
+pub fn dielectric_transmittance<R: Real>(cos_theta_i: R, eta: R) -> R {
+    R::one() - dielectric(cos_theta_i, eta)
+}
+
+// ---------------------------------------------------------------------------------------
+// Conductor
+// ---------------------------------------------------------------------------------------
+
+/// Unpolarized Fresnel reflectance of a conductor with complex IOR `eta + i·k`, in real
+/// arithmetic (usable on lanes).
+///
+/// With `c = cos θi`, `s² = 1 − c²` and `a + i b = √(η̃² − s²)` (the principal root; it is
+/// `η̃ cos θt`, the complex `g`), `|a + ib|² = √(t₀² + 4η²k²)`:
+///
+/// ```text
+/// t₀ = η² − k² − s²          a² + b² = √(t₀² + 4η²k²)
+/// a² = (a² + b² + t₀)/2      b² = (a² + b² − t₀)/2     (each taken in its cancellation-free form)
+/// R_s = |(c − (a+ib)) / (c + (a+ib))|²  = ((a − c)² + b²) / ((a + c)² + b²)
+/// R_p = R_s · |(c(a+ib) − s²) / (c(a+ib) + s²)|²
+///     = R_s · ((ca − s²)² + c²b²) / ((ca + s²)² + c²b²)
+/// R   = (R_s + R_p) / 2
+/// ```
+///
+/// The `R_p/R_s` identity follows from `r_p/r_s = ∓cos(θi + θt)/cos(θi − θt)` and Snell's law
+/// `η̃ sin θt = s`. This is the classic "a², b²" form (e.g. K. D. Möller, *Optics*, 1988;
+/// used by Mitsuba 3's `fresnel_conductor`); here `a²`, `b²` are computed without
+/// subtractive cancellation: `a² = 2η²k² / (a²+b² − t₀)` when `t₀ < 0`, and
+/// `b² = 2η²k² / (a²+b² + t₀)` when `t₀ ≥ 0`.
+///
+/// * Domain: `eta ∈ (0, ∞)`, `k ∈ [0, ∞)` with `(η² + k²)²` finite in the lane precision
+///   (tested for η ∈ [1e-3, 1e3], k ≤ 100 on f32 and f64); `cos_theta_i` taken by magnitude
+///   and clamped to `[0, 1]` (a conductor is opaque: its sign does **not** flip `eta`).
+/// * Result in `[0, 1]`; equals [`dielectric`]`(|cos θi|, eta)` when `k = 0`, including TIR
+///   for `eta < 1` (then `a = 0` and `R = 1`). `k` and `−k` give the same reflectance, so
+///   the seed's `n − iκ` values can be used as they are, with `k = κ`.
+///
+/// Reference: Born & Wolf §14.2 (metals); pbrt-v4 §9.3.6 (`FrComplex`).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::{conductor, f0_from_complex_ior};
+/// // Gold of the seed talk (0.34 − 3.2i there; 0.34 + 3.2i here): F0 ≈ 0.887.
+/// let f0 = conductor(1.0_f64, 0.34, 3.2);
+/// assert!((f0 - f0_from_complex_ior(0.34, 3.2)).abs() < 1e-15);
+/// assert!((f0 - 0.887).abs() < 5e-4);
+/// ```
+#[doc(alias = "FrComplex")]
+#[doc(alias = "FrConductor")]
+#[inline]
+#[must_use]
+pub fn conductor<R: Real>(cos_theta_i: R, eta: R, k: R) -> R {
+    let half = R::from_f64(0.5);
+    let c = cos_theta_i.abs().min(R::one());
+    let c2 = c * c;
+    let s2 = R::one() - c2;
+    // t0 = η² − k² − s² = (η − 1)(η + 1) + c² − k²: exact at η = 1, k = 0 (as in dielectric).
+    let t0 = (eta - R::one()).mul_add(eta + R::one(), c2) - k * k;
+    let two_nk = (eta + eta) * k;
+    let q = two_nk * two_nk * half; // 2η²k²
+    let h = t0.mul_add(t0, two_nk * two_nk).sqrt(); // a² + b²
+    // a² and b², each in its cancellation-free form; the selected division never has a
+    // zero divisor (t0 < 0 ⇒ h − t0 > 0; t0 > 0 ⇒ h + t0 > 0).
+    let a2 = R::select(t0.ge(R::zero()), (h + t0) * half, q / (h - t0));
+    let b2 = R::select(t0.gt(R::zero()), q / (h + t0), (h - t0) * half);
+    let a = a2.sqrt();
+    let am = a - c;
+    let ap = a + c;
+    let num_s = am.mul_add(am, b2);
+    let den_s = ap.mul_add(ap, b2);
+    let r_s = R::select(den_s.gt(R::zero()), num_s / den_s, R::zero());
+    let ca = c * a;
+    let cb2 = c2 * b2;
+    let pm = ca - s2;
+    let pp = ca + s2;
+    let ratio = pm.mul_add(pm, cb2) / pp.mul_add(pp, cb2);
+    let r_p = r_s * ratio;
+    (r_s + r_p) * half
+}
+
+/// Complex s and p amplitude reflection coefficients of a conductor (or, with `k = 0`, of a
+/// dielectric including the phase under total internal reflection), `(r_s, r_p)`.
+///
+/// ```text
+/// w   = √(η̃² − sin²θi)          principal root, η̃ = eta.re + i·eta.im  (w = η̃ cos θt)
+/// r_s = (cos θi − w) / (cos θi + w)
+/// r_p = (w − η̃² cos θi) / (w + η̃² cos θi)
+/// ```
+///
+/// Sign convention: `eta.im = k ≥ 0` (`e^{−iωt}` time dependence, so `Im w ≥ 0` is the
+/// field decaying into the metal); the seed talk's `n − iκ` is the conjugate, and its
+/// amplitudes are the conjugates of these. Amplitude signs as in [`dielectric_amplitudes`]
+/// (pbrt's `r_parl` is `−r_p`). `|r_s|² `, `|r_p|²` average to [`conductor`].
+///
+/// Under TIR of a dielectric (`k = 0`, `η < sin θi`) `w = i·√(sin²θi − η²)`, so
+/// `|r_s| = |r_p| = 1` and `arg r_s = −2 atan(√(sin²θi − η²) / cos θi)` (the Goos–Hänchen /
+/// Fresnel-rhomb phase).
+///
+/// * Domain: `eta.re ∈ (0, ∞)`, `eta.im ∈ [0, ∞)`, `cos_theta_i` by magnitude, clamped to 1.
+///   Index-matched grazing incidence (`η̃ = 1`, `cos θi = 0`) returns `0` (the limit along
+///   `η̃ = 1`).
+/// * Generic over [`Real`] (the complex values are plain `re`/`im` pairs of lanes), though
+///   mostly useful on `f32`/`f64`.
+///
+/// Reference: Born & Wolf §1.5.4 (TIR phases), §14.2 (metals).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::{conductor, conductor_amplitudes};
+/// use num_complex::Complex;
+/// let (r_s, r_p) = conductor_amplitudes(0.6_f64, Complex::new(0.2, 3.5));
+/// let r = (r_s.norm_sqr() + r_p.norm_sqr()) / 2.0;
+/// assert!((r - conductor(0.6, 0.2, 3.5)).abs() < 1e-14);
+/// ```
+#[inline]
+#[must_use]
+pub fn conductor_amplitudes<R: Real>(cos_theta_i: R, eta: Complex<R>) -> (Complex<R>, Complex<R>) {
+    let c = cos_theta_i.abs().min(R::one());
+    let (n, k) = (eta.re, eta.im);
+    // η̃² = (n² − k²) + i 2nk;  η̃² − s² = (n − 1)(n + 1) + c² − k² + i 2nk.
+    let e2 = (n * n - k * k, (n + n) * k);
+    let z = ((n - R::one()).mul_add(n + R::one(), c * c) - k * k, e2.1);
+    let w = csqrt(z);
+    let ec = (e2.0 * c, e2.1 * c);
+    let r_s = cdiv((c - w.0, -w.1), (c + w.0, w.1));
+    let r_p = cdiv((w.0 - ec.0, w.1 - ec.1), (w.0 + ec.0, w.1 + ec.1));
+    (Complex::new(r_s.0, r_s.1), Complex::new(r_p.0, r_p.1))
+}
+
+/// Principal square root of `x + iy` (branch cut on the negative real axis; `Im ≥ 0` for
+/// `y ≥ 0`, including `y = −0`), without cancellation.
+#[inline]
+fn csqrt<R: Real>((x, y): (R, R)) -> (R, R) {
+    let half = R::from_f64(0.5);
+    let m = x.mul_add(x, y * y).sqrt();
+    let t = ((m + x.abs()) * half).sqrt();
+    let other = R::select(t.gt(R::zero()), y.abs() / (t + t), R::zero());
+    let pos = x.ge(R::zero());
+    let re = R::select(pos, t, other);
+    let im_mag = R::select(pos, other, t);
+    (re, R::select(y.lt(R::zero()), -im_mag, im_mag))
+}
+
+/// `(a + ib) / (c + id)`; `0` when the divisor is `0` (only index-matched grazing incidence).
+#[inline]
+fn cdiv<R: Real>((a, b): (R, R), (c, d): (R, R)) -> (R, R) {
+    let den = c.mul_add(c, d * d);
+    let ok = den.gt(R::zero());
+    let re = R::select(ok, a.mul_add(c, b * d) / den, R::zero());
+    let im = R::select(ok, b.mul_add(c, -(a * d)) / den, R::zero());
+    (re, im)
+}
+
+// ---------------------------------------------------------------------------------------
+// Cook-Torrance (g, c)
+// ---------------------------------------------------------------------------------------
+
+/// Cook & Torrance's closed form of the unpolarized dielectric Fresnel reflectance, as the
+/// seed talk quotes it for Blinn's model, with its two OCR/slide errors corrected:
+///
+/// ```text
+/// c = cos θ,   g² = η² + c² − 1     (seed: "g = √(n² + c²) − 1": the −1 belongs under the root)
+/// F = ½ (g − c)²/(g + c)² · (1 + (c(g + c) − 1)² / (c(g − c) + 1)²)      (seed omits the ½)
+/// F = 1 when g² < 0 (total internal reflection)
+/// ```
+///
+/// It is algebraically the same as [`dielectric`]: `(g − c)/(g + c) = −r_s` and the second
+/// factor is `1 + r_p²/r_s²` (tests check the equality over the whole domain). Without the
+/// `½` the value at normal incidence would be `2 F0`.
+///
+/// * Domain: `eta ∈ (0, ∞)`, `cos_theta` by magnitude, clamped to 1 (no `1/η` flip: pass the
+///   relative IOR seen from the incident side). Result in `[0, 1]`; index-matched grazing
+///   incidence (`η = 1, c = 0`) gives `0`.
+///
+/// Reference: R. L. Cook, K. E. Torrance, "A Reflectance Model for Computer Graphics",
+/// ACM ToG 1(1), 1982, eq. in §3 (after Sparrow & Cess); J. F. Blinn, "Models of Light
+/// Reflection for Computer Synthesized Pictures", SIGGRAPH 1977.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::{cook_torrance_gc, dielectric};
+/// let (c, eta) = (0.3_f64, 1.5);
+/// assert!((cook_torrance_gc(c, eta) - dielectric(c, eta)).abs() < 1e-15);
+/// ```
+#[inline]
+#[must_use]
+pub fn cook_torrance_gc<R: Real>(cos_theta: R, eta: R) -> R {
+    let c = cos_theta.abs().min(R::one());
+    let g2 = (eta - R::one()).mul_add(eta + R::one(), c * c);
+    let tir = g2.lt(R::zero());
+    let g = g2.safe_sqrt();
+    let gpc = g + c;
+    let gmc = g - c;
+    let a = R::select(gpc.gt(R::zero()), gmc / gpc, R::zero());
+    let b = c.mul_add(gpc, -R::one()) / c.mul_add(gmc, R::one());
+    let f = (a * a * b.mul_add(b, R::one()) * R::from_f64(0.5)).min(R::one());
+    R::select(tir, R::one(), f)
+}
+
+// ---------------------------------------------------------------------------------------
+// Schlick and F0 conversions
+// ---------------------------------------------------------------------------------------
+
+/// Schlick's weight `(1 − cos θ)⁵`, with `1 − cos θ` clamped to `[0, 1]`.
+///
+/// Reference: C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering",
+/// Computer Graphics Forum 13(3), 1994.
+#[inline]
+#[must_use]
+pub fn schlick_weight<R: Real>(cos_theta: R) -> R {
+    let m = (R::one() - cos_theta).saturate();
+    let m2 = m * m;
+    m2 * m2 * m
+}
+
+/// Schlick's approximation of the Fresnel reflectance.
+///
+/// ```text
+/// F(θ) = F0 + (1 − F0)(1 − cos θ)⁵
+/// ```
+///
+/// Argument order `(f0, cos_theta)` as in shading languages (Filament's `F_Schlick`).
+/// * Domain: `f0 ∈ [0, 1]`; `cos_theta ∈ [0, 1]` (outside, `1 − cos θ` is clamped to
+///   `[0, 1]`). Result in `[f0, 1]`. Exact at `cos θ = 1` and `cos θ = 0`; for dielectrics
+///   it does not model total internal reflection, and for metals it misses the dip before
+///   grazing (see [`f82_tint`]).
+///
+/// Reference: C. Schlick, Computer Graphics Forum 13(3), 1994, eq. 24; the seed talk.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::schlick;
+/// assert_eq!(schlick(0.04_f32, 1.0), 0.04);
+/// assert_eq!(schlick(0.04_f32, 0.0), 1.0);
+/// ```
+#[inline]
+#[must_use]
+pub fn schlick<R: Real>(f0: R, cos_theta: R) -> R {
+    (R::one() - f0).mul_add(schlick_weight(cos_theta), f0)
+}
+
+/// Schlick's approximation with an explicit grazing reflectance `f90`.
+///
+/// ```text
+/// F(θ) = F0 + (F90 − F0)(1 − cos θ)⁵
+/// ```
+///
+/// `f90 = 1` gives [`schlick`]; engines lower it to fade the grazing highlight of
+/// materials whose `F0` is so small it must be occlusion (Filament: `f90 = saturate(50·F0)`).
+/// Domain `f0, f90 ∈ [0, 1]`, `cos_theta` as in [`schlick`]; result between `f0` and `f90`.
+///
+/// Reference: Schlick 1994; R. Guy, M. Agopian, *Physically Based Rendering in Filament*,
+/// Google, 2018, §4.4.3.
+#[inline]
+#[must_use]
+pub fn schlick_f90<R: Real>(f0: R, f90: R, cos_theta: R) -> R {
+    (f90 - f0).mul_add(schlick_weight(cos_theta), f0)
+}
+
+/// Normal-incidence reflectance of a dielectric, `F0 = ((η − 1)/(η + 1))²`.
+///
+/// Domain `eta ∈ (0, ∞)`; `eta` and `1/eta` give the same `F0`. Equals `dielectric(1, eta)`.
+/// Reference: Born & Wolf §1.5.3; the seed talk writes `((1 − n)/(1 + n))²`.
+#[inline]
+#[must_use]
+pub fn f0_from_ior<R: Real>(eta: R) -> R {
+    let r = (eta - R::one()) / (eta + R::one());
+    r * r
+}
+
+/// Normal-incidence reflectance of a conductor, `F0 = ((η − 1)² + k²) / ((η + 1)² + k²)`.
+///
+/// `|(η̃ − 1)/(η̃ + 1)|²` for `η̃ = η ± ik` (the sign of `k` does not matter). Domain
+/// `eta ∈ (0, ∞)`, `k ∈ [0, ∞)`, `(η + 1)² + k²` finite. Equals `conductor(1, eta, k)`.
+#[inline]
+#[must_use]
+pub fn f0_from_complex_ior<R: Real>(eta: R, k: R) -> R {
+    let k2 = k * k;
+    let m = eta - R::one();
+    let p = eta + R::one();
+    m.mul_add(m, k2) / p.mul_add(p, k2)
+}
+
+/// The real IOR `η ≥ 1` whose normal-incidence reflectance is `f0` (inverse of
+/// [`f0_from_ior`]).
+///
+/// ```text
+/// η = (1 + √F0) / (1 − √F0)
+/// ```
+///
+/// * `F0 = ((η−1)/(η+1))²` has two roots, `η` and `1/η`; this returns the one `≥ 1`
+///   (a denser medium seen from air, the usual meaning of an `F0` texture).
+/// * Domain `f0 ∈ [0, 1)`. As `F0 → 1`, `η ≈ 4 / (1 − F0) → ∞` (`f0 = 1` gives `+∞`:
+///   no real IOR reflects everything at normal incidence; that takes a conductor).
+///   [`Dielectric::from_f0`] validates and rejects `f0 ∉ [0, 1)`.
+///
+/// Reference: inverse of Born & Wolf §1.5.3; used by Cook & Torrance 1982 to recover `η`
+/// from a measured `F0`.
+#[inline]
+#[must_use]
+pub fn ior_from_f0<R: Real>(f0: R) -> R {
+    let s = f0.safe_sqrt();
+    (R::one() + s) / (R::one() - s)
+}
+
+// ---------------------------------------------------------------------------------------
+// Metals beyond Schlick
+// ---------------------------------------------------------------------------------------
+
+/// `μ̄ = 1/7`, the cosine (θ ≈ 81.8°, "82°") where `μ(1 − μ)⁶` peaks and where the F82-tint
+/// model matches the desired edge reflectance.
+pub const F82_COS_THETA: f64 = 1.0 / 7.0;
+
+/// `μ̄ (1 − μ̄)⁶` at [`F82_COS_THETA`] = `6⁶ / 7⁷`.
+const F82_W: f64 = 46656.0 / 823543.0;
+
+/// The F82-tint correction coefficient `b` (per material; precompute it).
+///
+/// ```text
+/// b = (F_Schlick(F0, μ̄) − tint · F_Schlick(F0, μ̄)) / (μ̄ (1 − μ̄)⁶),     μ̄ = 1/7
+///   = F_Schlick(F0, μ̄) (1 − tint) · 7⁷/6⁶
+/// ```
+///
+/// so that [`f82_tint_with_b`] passes through `tint · F_Schlick(F0, μ̄)` at `cos θ = μ̄`.
+/// Domain `f0 ∈ [0, 1]`, `tint ∈ [0, 1]` (OpenPBR's `specular_color`).
+///
+/// Reference: N. Hoffman, "Fresnel Equations Considered Harmful", 2019; A. Kutz et al.,
+/// "Novel aspects of the Adobe Standard Material", 2021 (the `b` notation); OpenPBR 1.0 §
+/// "Metal".
+#[inline]
+#[must_use]
+pub fn f82_b<R: Real>(f0: R, tint: R) -> R {
+    schlick(f0, R::from_f64(F82_COS_THETA)) * (R::one() - tint) * R::from_f64(1.0 / F82_W)
+}
+
+/// Hoffman's F82-tint Fresnel for metals, with a precomputed `b` (see [`f82_b`]).
+///
+/// ```text
+/// F(μ) = saturate( F0 + (1 − F0)(1 − μ)⁵ − b μ (1 − μ)⁶ ),     μ = cos θ
+/// ```
+///
+/// The correction `μ(1 − μ)⁶` vanishes at `μ = 0` and `μ = 1` (so `F(1) = F0`, `F(0) = 1`)
+/// and peaks at `μ̄ = 1/7`, reproducing the dip of real metals' reflectance before grazing
+/// that Schlick misses. For strong corrections the published curve goes negative near
+/// `μ ≈ 0.3–0.6` (OpenPBR issue #256); the result is clamped to `[0, 1]`.
+/// Domain `f0 ∈ [0, 1]`, `cos_theta ∈ [0, 1]` (clamped), `b` finite.
+///
+/// Reference: Hoffman 2019; Kutz et al. 2021; OpenPBR Surface 1.0.
+#[inline]
+#[must_use]
+pub fn f82_tint_with_b<R: Real>(f0: R, b: R, cos_theta: R) -> R {
+    let m = (R::one() - cos_theta).saturate();
+    let mu = R::one() - m;
+    let m2 = m * m;
+    let m5 = m2 * m2 * m;
+    let s = (R::one() - f0).mul_add(m5, f0);
+    (s - b * mu * m5 * m).saturate()
+}
+
+/// Hoffman's F82-tint Fresnel for metals: Schlick with a correction so that the reflectance
+/// at `cos θ = 1/7` (≈ 82°) is `tint × F_Schlick(F0, 1/7)`.
+///
+/// ```text
+/// F(μ) = saturate( F_Schlick(F0, μ) − b μ (1 − μ)⁶ ),   b = F_Schlick(F0, 1/7)(1 − tint) / ((1/7)(6/7)⁶)
+/// ```
+///
+/// Computes `b` on every call; [`F82Tint`] precomputes it. `tint = 1` is plain Schlick.
+/// Domain `f0, tint ∈ [0, 1]`, `cos_theta ∈ [0, 1]`.
+///
+/// Reference: N. Hoffman, "Fresnel Equations Considered Harmful", EGSR 2019 workshop /
+/// SIGGRAPH 2019 course; OpenPBR Surface 1.0 (metal Fresnel), Kutz et al. 2021.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::{f82_tint, schlick, F82_COS_THETA};
+/// let (f0, tint) = (0.9_f64, 0.8);
+/// let mu = F82_COS_THETA;
+/// assert!((f82_tint(f0, tint, mu) - tint * schlick(f0, mu)).abs() < 1e-15);
+/// assert_eq!(f82_tint(f0, tint, 1.0), f0);
+/// ```
+#[inline]
+#[must_use]
+pub fn f82_tint<R: Real>(f0: R, tint: R, cos_theta: R) -> R {
+    f82_tint_with_b(f0, f82_b(f0, tint), cos_theta)
+}
+
+/// Gulbrandsen's artist-friendly parameters → complex IOR: from reflectivity `r` (the
+/// normal-incidence reflectance) and edge tint `g`, the `(n, k)` with `F0 = r`.
+///
+/// ```text
+/// n_min = (1 − r)/(1 + r),   n_max = (1 + √r)/(1 − √r)
+/// n = g·n_min + (1 − g)·n_max
+/// k = √( (r (n + 1)² − (n − 1)²) / (1 − r) )
+/// ```
+///
+/// `k` solves `F0(n, k) = r` for `k` (see [`f0_from_complex_ior`]); real `k` needs
+/// `n ∈ [(1−√r)/(1+√r), n_max]`, which `n ∈ [n_min, n_max]` satisfies. `g = 0` gives the
+/// dielectric `n = n_max, k = 0`; `g = 1` the smallest `n` and largest `k` of the family,
+/// the most saturated edge colour. The result is exact Fresnel: [`conductor`]`(1, n, k) = r`.
+///
+/// * Domain `r ∈ [0, 1)`, `g ∈ [0, 1]`. As `r → 1`, `n_max` and `k` grow like `1/(1 − √r)`;
+///   shader implementations clamp `r ≤ 0.99`.
+///
+/// Reference: O. Gulbrandsen, "Artist Friendly Metallic Fresnel", JCGT 3(4), 2014, §3.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::{f0_from_complex_ior, gulbrandsen_from_nk, gulbrandsen_to_nk};
+/// let (n, k) = gulbrandsen_to_nk(0.9_f64, 0.5);
+/// assert!((f0_from_complex_ior(n, k) - 0.9).abs() < 1e-12);
+/// let (r, g) = gulbrandsen_from_nk(n, k);
+/// assert!((r - 0.9).abs() < 1e-12 && (g - 0.5).abs() < 1e-12);
+/// ```
+#[inline]
+#[must_use]
+pub fn gulbrandsen_to_nk<R: Real>(r: R, g: R) -> (R, R) {
+    let (n_min, n_max) = gulbrandsen_n_range(r);
+    let n = g.mul_add(n_min - n_max, n_max);
+    let np = n + R::one();
+    let nm = n - R::one();
+    let k2 = (r * np).mul_add(np, -(nm * nm)) / (R::one() - r);
+    (n, k2.safe_sqrt())
+}
+
+/// Complex IOR → Gulbrandsen's artist-friendly `(r, g)`: reflectivity and edge tint.
+///
+/// ```text
+/// r = ((n − 1)² + k²) / ((n + 1)² + k²)
+/// g = (n_max(r) − n) / (n_max(r) − n_min(r))
+/// ```
+///
+/// The exact inverse of [`gulbrandsen_to_nk`]. A measured metal may give `g` outside
+/// `[0, 1]` (its `n` below `n_min(r)`); the mapping still round-trips, but artist UIs that
+/// clamp `g` to `[0, 1]` then change the material. Domain `n ∈ (0, ∞)`, `k ∈ [0, ∞)` with
+/// `r < 1` and `n_max ≠ n_min` (i.e. `r > 0`); `r = 0` (`n = 1, k = 0`) returns `g = 0`.
+///
+/// Reference: Gulbrandsen 2014, §3.
+#[inline]
+#[must_use]
+pub fn gulbrandsen_from_nk<R: Real>(n: R, k: R) -> (R, R) {
+    let r = f0_from_complex_ior(n, k);
+    let (n_min, n_max) = gulbrandsen_n_range(r);
+    let span = n_max - n_min;
+    let g = R::select(span.gt(R::zero()), (n_max - n) / span, R::zero());
+    (r, g)
+}
+
+#[inline]
+fn gulbrandsen_n_range<R: Real>(r: R) -> (R, R) {
+    let s = r.safe_sqrt();
+    (
+        (R::one() - r) / (R::one() + r),
+        (R::one() + s) / (R::one() - s),
+    )
+}
+
+// ---------------------------------------------------------------------------------------
+// FresnelTerm implementations
+// ---------------------------------------------------------------------------------------
+
+#[inline]
+fn splat<R: Real>(x: R::Scalar) -> R {
+    R::splat(x)
+}
+
+/// Schlick's approximation per channel, with `f0` and `f90` per channel:
+/// `F = F0 + (F90 − F0)(1 − cos θd)⁵` (see [`schlick_f90`]).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::{FresnelTerm, Schlick};
+/// let gold = Schlick::<f32, 3>::new([1.0, 0.78, 0.34]).unwrap();
+/// assert_eq!(gold.eval(1.0), [1.0, 0.78, 0.34]);
+/// assert!(Schlick::<f32, 1>::new([1.5]).is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Schlick<R, const N: usize> {
+    f0: [R; N],
+    f90: [R; N],
+}
+
+impl<R: Real, const N: usize> Schlick<R, N> {
+    /// Schlick with `f90 = 1`. Each `f0 ∈ [0, 1]`, else [`Error`].
+    pub fn new(f0: [R::Scalar; N]) -> Result<Self, Error> {
+        Self::with_f90(f0, [<R::Scalar as Scalar>::of(1.0); N])
+    }
+
+    /// Schlick with an explicit grazing reflectance. Each `f0, f90 ∈ [0, 1]`, else [`Error`].
+    pub fn with_f90(f0: [R::Scalar; N], f90: [R::Scalar; N]) -> Result<Self, Error> {
+        for i in 0..N {
+            error::unit_interval("f0", f0[i])?;
+            error::unit_interval("f90", f90[i])?;
+        }
+        Ok(Self {
+            f0: f0.map(splat),
+            f90: f90.map(splat),
+        })
+    }
+
+    /// Schlick with `f0 = ((η − 1)/(η + 1))²` from a real IOR per channel (`eta > 0`).
+    pub fn from_ior(eta: [R::Scalar; N]) -> Result<Self, Error> {
+        let mut f0 = eta;
+        for i in 0..N {
+            error::positive("eta", eta[i])?;
+            f0[i] = f0_from_ior(eta[i]);
+        }
+        Self::new(f0)
+    }
+
+    /// Schlick with `f0` from a complex IOR per channel, `((η−1)² + k²)/((η+1)² + k²)`
+    /// (`eta > 0`, `k ≥ 0`). Reproduces the exact [`Conductor`] at normal and grazing
+    /// incidence only; see the module docs for its error in between.
+    pub fn from_complex_ior(eta: [R::Scalar; N], k: [R::Scalar; N]) -> Result<Self, Error> {
+        let mut f0 = eta;
+        for i in 0..N {
+            error::positive("eta", eta[i])?;
+            error::non_negative("k", k[i])?;
+            f0[i] = f0_from_complex_ior(eta[i], k[i]);
+        }
+        Self::new(f0)
+    }
+
+    /// Normal-incidence reflectance per channel.
+    pub fn f0(&self) -> [R; N] {
+        self.f0
+    }
+
+    /// Grazing reflectance per channel.
+    pub fn f90(&self) -> [R; N] {
+        self.f90
+    }
+}
+
+impl<R: Real, const N: usize> FresnelTerm<R, N> for Schlick<R, N> {
+    #[inline]
+    fn eval(&self, cos_theta_d: R) -> [R; N] {
+        let w = schlick_weight(cos_theta_d);
+        core::array::from_fn(|i| (self.f90[i] - self.f0[i]).mul_add(w, self.f0[i]))
+    }
+}
+
+/// The exact Fresnel reflectance of a smooth dielectric, the same (real) relative IOR for
+/// every channel: [`FresnelTerm`] is implemented for every channel count `N` and returns
+/// `[dielectric(cos θd, eta); N]` (an uncoloured coat or glass; dispersion is not modelled).
+///
+/// `cos θd < 0` means incidence from inside and uses `1/eta`, as [`dielectric`].
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::{Dielectric, FresnelTerm};
+/// let glass = Dielectric::<f64>::new(1.5).unwrap();
+/// let [f] = FresnelTerm::<f64, 1>::eval(&glass, 1.0);
+/// assert!((f - 0.04).abs() < 1e-15);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dielectric<R> {
+    eta: R,
+}
+
+impl<R: Real> Dielectric<R> {
+    /// A dielectric interface with relative IOR `eta = η_t/η_i > 0`, else [`Error`].
+    pub fn new(eta: R::Scalar) -> Result<Self, Error> {
+        error::positive("eta", eta)?;
+        Ok(Self { eta: R::splat(eta) })
+    }
+
+    /// The dielectric (`η ≥ 1`) whose normal-incidence reflectance is `f0`
+    /// (see [`ior_from_f0`]). `f0 ∈ [0, 1)`, else [`Error`]: `f0 = 1` has no real IOR.
+    pub fn from_f0(f0: R::Scalar) -> Result<Self, Error> {
+        error::check("f0", f0, "[0, 1)", |v| (0.0..1.0).contains(&v))?;
+        // In f64: in f32, √f0 rounds to 1 for f0 within an ulp of 1.
+        Self::new(<R::Scalar as Scalar>::of(ior_from_f0(f0.into())))
+    }
+
+    /// The relative IOR.
+    pub fn eta(&self) -> R {
+        self.eta
+    }
+}
+
+impl<R: Real, const N: usize> FresnelTerm<R, N> for Dielectric<R> {
+    #[inline]
+    fn eval(&self, cos_theta_d: R) -> [R; N] {
+        [dielectric(cos_theta_d, self.eta); N]
+    }
+}
+
+/// The exact Fresnel reflectance of a conductor with a complex IOR `eta + i·k` per channel
+/// (see [`conductor`]).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::{Conductor, FresnelTerm};
+/// use brdf::ior;
+/// let gold = Conductor::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB);
+/// let f = gold.eval(1.0);
+/// assert!(f[0] > f[1] && f[1] > f[2]); // yellow
+/// let seed_gold = Conductor::<f64, 1>::from_preset(&ior::GOLD).unwrap();
+/// assert!((seed_gold.eval(1.0)[0] - 0.887).abs() < 5e-4);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Conductor<R, const N: usize> {
+    eta: [R; N],
+    k: [R; N],
+}
+
+impl<R: Real, const N: usize> Conductor<R, N> {
+    /// A conductor with `eta > 0` and `k ≥ 0` per channel, else [`Error`].
+    pub fn new(eta: [R::Scalar; N], k: [R::Scalar; N]) -> Result<Self, Error> {
+        for i in 0..N {
+            error::positive("eta", eta[i])?;
+            error::non_negative("k", k[i])?;
+        }
+        Ok(Self {
+            eta: eta.map(splat),
+            k: k.map(splat),
+        })
+    }
+
+    /// A conductor from Gulbrandsen's artist-friendly reflectivity `r ∈ [0, 1)` and edge
+    /// tint `g ∈ [0, 1]` per channel (see [`gulbrandsen_to_nk`]), else [`Error`].
+    pub fn from_reflectivity_edge_tint(
+        r: [R::Scalar; N],
+        g: [R::Scalar; N],
+    ) -> Result<Self, Error> {
+        let mut eta = r;
+        let mut k = r;
+        for i in 0..N {
+            error::check("r", r[i], "[0, 1)", |v| (0.0..1.0).contains(&v))?;
+            error::unit_interval("g", g[i])?;
+            let (n, kk) = gulbrandsen_to_nk::<f64>(r[i].into(), g[i].into());
+            (eta[i], k[i]) = (<R::Scalar as Scalar>::of(n), <R::Scalar as Scalar>::of(kk));
+        }
+        Self::new(eta, k)
+    }
+
+    /// Real part of the IOR per channel.
+    pub fn eta(&self) -> [R; N] {
+        self.eta
+    }
+
+    /// Extinction coefficient per channel.
+    pub fn k(&self) -> [R; N] {
+        self.k
+    }
+}
+
+impl<R: Real> Conductor<R, 1> {
+    /// A one-channel conductor from a single-wavelength preset (e.g. the seed table's
+    /// [`crate::ior::GOLD`]). Dielectric presets (`k = 0`) are accepted: the result equals
+    /// [`Dielectric`] seen from outside. Errors only for a malformed preset.
+    pub fn from_preset(p: &crate::ior::Preset) -> Result<Self, Error> {
+        Self::new(
+            [<R::Scalar as Scalar>::of(p.eta)],
+            [<R::Scalar as Scalar>::of(p.k)],
+        )
+    }
+}
+
+impl<R: Real> Conductor<R, 3> {
+    /// An RGB conductor from a measured preset of [`crate::ior::METALS_RGB`].
+    pub fn from_rgb_preset(p: &crate::ior::RgbPreset) -> Self {
+        let of = <R::Scalar as Scalar>::of;
+        Self {
+            eta: p.eta.map(|x| R::splat(of(x))),
+            k: p.k.map(|x| R::splat(of(x))),
+        }
+    }
+}
+
+impl<R: Real, const N: usize> FresnelTerm<R, N> for Conductor<R, N> {
+    #[inline]
+    fn eval(&self, cos_theta_d: R) -> [R; N] {
+        core::array::from_fn(|i| conductor(cos_theta_d, self.eta[i], self.k[i]))
+    }
+}
+
+/// Hoffman's F82-tint metal Fresnel per channel, with the correction coefficient `b`
+/// precomputed at construction (see [`f82_tint_with_b`]).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::{F82Tint, FresnelTerm};
+/// use brdf::ior;
+/// let gold = F82Tint::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB);
+/// let exact = brdf::fresnel::Conductor::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB);
+/// let (a, b) = (gold.eval(0.5), exact.eval(0.5));
+/// assert!((0..3).all(|i| (a[i] - b[i]).abs() < 0.02));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct F82Tint<R, const N: usize> {
+    f0: [R; N],
+    b: [R; N],
+}
+
+impl<R: Real, const N: usize> F82Tint<R, N> {
+    /// From `f0 ∈ [0, 1]` and `tint ∈ [0, 1]` (OpenPBR's `base_color` and `specular_color`
+    /// of a metal) per channel, else [`Error`].
+    pub fn new(f0: [R::Scalar; N], tint: [R::Scalar; N]) -> Result<Self, Error> {
+        let mut b = f0;
+        for i in 0..N {
+            error::unit_interval("f0", f0[i])?;
+            error::unit_interval("tint", tint[i])?;
+            b[i] = f82_b(f0[i], tint[i]);
+        }
+        Ok(Self {
+            f0: f0.map(splat),
+            b: b.map(splat),
+        })
+    }
+
+    /// Fitted to a complex IOR per channel (`eta > 0`, `k ≥ 0`, else [`Error`]): `F0` and
+    /// the reflectance at `cos θ = 1/7` are taken from the exact [`conductor`] Fresnel, so
+    /// the model is exact at `μ = 1`, `1/7` and `0`. (The implied tint may exceed 1 for
+    /// some metals; `b` is then negative, which the model handles.)
+    pub fn from_ior(eta: [R::Scalar; N], k: [R::Scalar; N]) -> Result<Self, Error> {
+        let mut f0 = eta;
+        let mut b = eta;
+        for i in 0..N {
+            error::positive("eta", eta[i])?;
+            error::non_negative("k", k[i])?;
+            let (n, kk): (f64, f64) = (eta[i].into(), k[i].into());
+            let f0_i = conductor(1.0, n, kk);
+            let f82 = conductor(F82_COS_THETA, n, kk);
+            f0[i] = <R::Scalar as Scalar>::of(f0_i);
+            b[i] = <R::Scalar as Scalar>::of((schlick(f0_i, F82_COS_THETA) - f82) / F82_W);
+        }
+        Ok(Self {
+            f0: f0.map(splat),
+            b: b.map(splat),
+        })
+    }
+
+    /// Normal-incidence reflectance per channel.
+    pub fn f0(&self) -> [R; N] {
+        self.f0
+    }
+
+    /// The precomputed correction coefficient `b` per channel.
+    pub fn b(&self) -> [R; N] {
+        self.b
+    }
+}
+
+impl<R: Real> F82Tint<R, 3> {
+    /// Fitted to a measured RGB preset of [`crate::ior::METALS_RGB`] (see
+    /// [`F82Tint::from_ior`]).
+    pub fn from_rgb_preset(p: &crate::ior::RgbPreset) -> Self {
+        let of = <R::Scalar as Scalar>::of;
+        Self::from_ior(p.eta.map(of), p.k.map(of)).expect("presets are valid")
+    }
+}
+
+impl<R: Real, const N: usize> FresnelTerm<R, N> for F82Tint<R, N> {
+    #[inline]
+    fn eval(&self, cos_theta_d: R) -> [R; N] {
+        core::array::from_fn(|i| f82_tint_with_b(self.f0[i], self.b[i], cos_theta_d))
+    }
+}
+
+/// No Fresnel factor: reflectance `1` on every channel, so a model can be evaluated (and
+/// pay) for no Fresnel at all, e.g. when the caller applies its own, or to isolate `D·G`.
+///
+/// ```
+/// use brdf::fresnel::{FresnelTerm, NoFresnel};
+/// assert_eq!(FresnelTerm::<f32, 3>::eval(&NoFresnel, 0.3), [1.0; 3]);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NoFresnel;
+
+impl<R: Real, const N: usize> FresnelTerm<R, N> for NoFresnel {
+    #[inline]
+    fn eval(&self, _cos_theta_d: R) -> [R; N] {
+        [R::one(); N]
+    }
 }
