@@ -1,0 +1,731 @@
+//! Tests of the Fresnel module: exact dielectric and conductor equations against independent
+//! formulations (angles, complex arithmetic, Stokes relations, energy conservation), the
+//! Cook-Torrance (g, c) form, Schlick, F0 conversions, F82-tint and Gulbrandsen, the
+//! `FresnelTerm` types and their validation, extremes on f32/f64, and SIMD lanes.
+mod common;
+
+use brdf::fresnel::{self, *};
+use brdf::{Error, ior};
+use num_complex::Complex;
+use proptest::prelude::*;
+
+// ----------------------------------------------------------------------------------------
+// Strategies and independent references
+// ----------------------------------------------------------------------------------------
+
+/// Relative IOR: log-uniform over [1e-3, 1e3], near 1 (both sides), exactly 1, and the
+/// common glass range.
+fn eta() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        4 => (-3.0f64..=3.0).prop_map(|e| 10f64.powf(e)),
+        1 => (-1.0f64..=1.0).prop_map(|t| 1.0 + 1e-6 * t),
+        1 => Just(1.0),
+        2 => 1.0f64..3.0,
+        1 => 0.3f64..1.0,
+    ]
+}
+
+/// Extinction coefficient: 0, log-uniform up to 100, and the metal range.
+fn kappa() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        1 => Just(0.0),
+        2 => (-4.0f64..=2.0).prop_map(|e| 10f64.powf(e)),
+        2 => 0.0f64..8.0,
+        1 => Just(100.0),
+    ]
+}
+
+/// A signed cosine covering [−1, 1] with normal, grazing (0, ±1e-7) and a rounding step
+/// outside the interval.
+fn signed_cos() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        8 => (common::cos_theta(), any::<bool>()).prop_map(|(c, s)| if s { -c } else { c }),
+        1 => Just(1.0 + f64::EPSILON),
+        1 => Just(-1.0 - f64::EPSILON),
+    ]
+}
+
+/// Seed-convention amplitudes from angles (Born & Wolf §1.5.2), an independent formulation:
+/// `r_s = −sin(θi − θt)/sin(θi + θt)`, `r_p = −tan(θi − θt)/tan(θi + θt)` (seed sign).
+fn amplitudes_from_angles(cos_i: f64, eta: f64) -> (f64, f64) {
+    let ti = cos_i.acos();
+    let tt = (ti.sin() / eta).asin();
+    (
+        -(ti - tt).sin() / (ti + tt).sin(),
+        -(ti - tt).tan() / (ti + tt).tan(),
+    )
+}
+
+/// Complex amplitudes by straightforward complex arithmetic (num-complex's own sqrt), with
+/// the branch `Im w ≥ 0`.
+fn complex_reference(cos_i: f64, eta: Complex<f64>) -> (Complex<f64>, Complex<f64>) {
+    let c = Complex::new(cos_i, 0.0);
+    let e2 = eta * eta;
+    // η² − sin²θ written as (η² − 1) + cos²θ: no cancellation near grazing.
+    let mut w = ((e2 - 1.0) + cos_i * cos_i).sqrt();
+    if w.im < 0.0 {
+        w = -w;
+    }
+    ((c - w) / (c + w), (w - e2 * c) / (w + e2 * c))
+}
+
+// ----------------------------------------------------------------------------------------
+// Dielectric
+// ----------------------------------------------------------------------------------------
+
+#[test]
+fn dielectric_reference_values() {
+    // Air → glass at normal incidence: 4 %.
+    assert!((dielectric(1.0f64, 1.5) - 0.04).abs() < 1e-16);
+    // Brewster's angle tan θB = η: r_p = 0, so r = r_s²/2.
+    let cb = (1.0f64 / 1.5).atan().sin(); // cos θB = 1/√(1 + η²)
+    let a = dielectric_amplitudes(cb, 1.5);
+    assert!(a.r_p.abs() < 1e-15, "{}", a.r_p);
+    // Hecht, Optics: at Brewster for n = 1.5, R_s = 0.1479 (θB = 56.31°).
+    assert!(
+        (a.r_s * a.r_s - 0.147_929).abs() < 1e-6,
+        "{}",
+        a.r_s * a.r_s
+    );
+    // Critical angle from inside: sin θc = 1/η; just beyond is TIR.
+    let cos_c = (1.0f64 - 1.0 / 2.25).sqrt();
+    assert_eq!(dielectric(-(cos_c * (1.0 - 1e-12)), 1.5), 1.0);
+    assert!(dielectric(-(cos_c * (1.0 + 1e-9)), 1.5) < 1.0);
+    // Grazing and index-matched.
+    assert_eq!(dielectric(0.0, 1.5), 1.0);
+    assert_eq!(dielectric(0.0, 1.0), 0.0);
+    assert_eq!(dielectric(0.3, 1.0), 0.0);
+    assert_eq!(dielectric_transmittance(0.0, 1.0), 1.0);
+}
+
+#[test]
+fn amplitude_sign_convention_and_pbrt_mapping() {
+    // Seed convention: r_p = r_s = (1 − η)/(1 + η) at normal incidence.
+    let a = dielectric_amplitudes(1.0f64, 2.0);
+    assert!((a.r_s + 1.0 / 3.0).abs() < 1e-16 && (a.r_p + 1.0 / 3.0).abs() < 1e-16);
+    assert!((a.t_s - 2.0 / 3.0).abs() < 1e-16 && (a.t_p - 2.0 / 3.0).abs() < 1e-16);
+    // pbrt-v4 FrDielectric: r_parl = (η cos θi − cos θt)/(η cos θi + cos θt) = −r_p,
+    // r_perp = (cos θi − η cos θt)/(cos θi + η cos θt) = r_s.
+    for &(c, eta) in &[(0.3f64, 1.5f64), (0.9, 1.33), (0.05, 2.4), (0.8, 0.7)] {
+        let a = dielectric_amplitudes(c, eta);
+        let ct = (1.0 - (1.0 - c * c) / (eta * eta)).sqrt();
+        let r_parl = (eta * c - ct) / (eta * c + ct);
+        let r_perp = (c - eta * ct) / (c + eta * ct);
+        assert!((a.r_p + r_parl).abs() < 1e-15 && (a.r_s - r_perp).abs() < 1e-15);
+        assert!((a.cos_theta_t - ct).abs() < 1e-15);
+    }
+    // Under TIR: critical-angle values, no transmission.
+    let a = dielectric_amplitudes(0.2f64, 1.0 / 1.5);
+    assert_eq!(
+        (a.r_s, a.r_p, a.t_s, a.t_p, a.cos_theta_t),
+        (1.0, -1.0, 0.0, 0.0, 0.0)
+    );
+}
+
+proptest! {
+    #![proptest_config(common::config(256))]
+
+    /// Energy conservation r + t = 1, with t computed independently here from the
+    /// transmission amplitudes and the (η cos θt / cos θi) factor, over the whole domain.
+    #[test]
+    fn dielectric_energy_conservation(c in signed_cos(), eta in eta()) {
+        let a = dielectric_amplitudes(c, eta);
+        let r = dielectric(c, eta);
+        prop_assert!((0.0..=1.0).contains(&r));
+        prop_assert_eq!(r, a.reflectance());
+        let ci = a.cos_theta_i;
+        if ci > 0.0 {
+            let factor = a.eta * a.cos_theta_t / ci;
+            let t = factor * (a.t_s * a.t_s + a.t_p * a.t_p) / 2.0;
+            prop_assert!((r + t - 1.0).abs() < 1e-12, "r {r} t {t} at {c} {eta}");
+        }
+        prop_assert!((r + a.transmittance() - 1.0).abs() < 1e-12);
+        prop_assert!((dielectric_transmittance(c, eta) - a.transmittance()).abs() < 1e-12);
+    }
+
+    /// The g-form equals the angle form of Born & Wolf (away from normal incidence, where the
+    /// angle form is 0/0, and from TIR).
+    #[test]
+    fn dielectric_matches_angle_form(c in 0.01f64..0.99, eta in 0.2f64..5.0) {
+        prop_assume!(eta >= 1.0 || (1.0 - c * c) < eta * eta * (1.0 - 1e-6));
+        let (rs, rp) = amplitudes_from_angles(c, eta);
+        let a = dielectric_amplitudes(c, eta);
+        prop_assert!((a.r_s - rs).abs() < 1e-9 && (a.r_p - rp).abs() < 1e-9,
+            "{:?} vs ({rs}, {rp})", a);
+    }
+
+    /// Incidence from inside uses 1/η; reflectance is reciprocal, r(θi, η) = r(θt, 1/η),
+    /// and the Stokes relation t_s·t'_s = 1 − r_s² holds.
+    #[test]
+    fn dielectric_inside_outside_and_stokes(c in common::cos_theta(), eta in eta()) {
+        prop_assert_eq!(dielectric(-c, eta), dielectric(c, 1.0 / eta));
+        let a = dielectric_amplitudes(c, eta);
+        // Near grazing θi ↦ θt is ill-conditioned (dθt/dθi → ∞ at the critical angle).
+        if a.r_s < 1.0 && a.cos_theta_i > 1e-4 {
+            let b = dielectric_amplitudes(-a.cos_theta_t, eta); // the refracted ray, reversed
+            // Rounding of cos θt is amplified by ~max(η, 1/η)²/cos θi on the way back.
+            let m = eta.max(1.0 / eta);
+            let tol = 1e-12 * (1.0 + m * m / a.cos_theta_i);
+            prop_assert!((a.reflectance() - b.reflectance()).abs() < tol,
+                "{} vs {}", a.reflectance(), b.reflectance());
+            prop_assert!((a.t_s * b.t_s - (1.0 - a.r_s * a.r_s)).abs() < tol);
+            prop_assert!((a.t_p * b.t_p - (1.0 - a.r_p * a.r_p)).abs() < tol);
+        }
+    }
+}
+
+// ----------------------------------------------------------------------------------------
+// Conductor
+// ----------------------------------------------------------------------------------------
+
+#[test]
+fn conductor_reference_values() {
+    // F0 of the seed's gold.
+    assert!((conductor(1.0f64, 0.34, 3.2) - 0.887).abs() < 5e-4);
+    // Grazing: 1 for every conductor.
+    assert_eq!(conductor(0.0, 0.2, 3.5), 1.0);
+    // Index-matched grazing: the limit 0 along η = 1.
+    assert_eq!(conductor(0.0, 1.0, 0.0), 0.0);
+    // The sign of cos θ is ignored (an opaque conductor).
+    assert_eq!(conductor(-0.4, 0.2, 3.5), conductor(0.4, 0.2, 3.5));
+}
+
+#[test]
+fn conductor_tir_phase() {
+    // Dielectric under TIR through the complex amplitudes: modulus 1 and the classic phase.
+    let (c, eta) = (0.3f64, 1.0 / 1.5);
+    let (r_s, r_p) = conductor_amplitudes(c, Complex::new(eta, 0.0));
+    assert!((r_s.norm() - 1.0).abs() < 1e-15 && (r_p.norm() - 1.0).abs() < 1e-15);
+    let q = (1.0 - c * c - eta * eta).sqrt();
+    assert!(
+        (r_s.arg() + 2.0 * (q / c).atan()).abs() < 1e-14,
+        "{}",
+        r_s.arg()
+    );
+    // Seed (n − iκ) convention: conjugate IOR, conjugate amplitudes, same reflectance.
+    let (a_s, a_p) = conductor_amplitudes(0.5f64, Complex::new(0.34, 3.2));
+    let (b_s, b_p) = conductor_amplitudes(0.5f64, Complex::new(0.34, -3.2));
+    assert!((a_s.conj() - b_s).norm() < 1e-15 && (a_p.conj() - b_p).norm() < 1e-15);
+}
+
+proptest! {
+    #![proptest_config(common::config(256))]
+
+    /// The closed real form equals |r_s|², |r_p|² from complex arithmetic (both the crate's
+    /// generic complex amplitudes and num-complex's), and lies in [0, 1].
+    #[test]
+    fn conductor_matches_complex_form(c in signed_cos(), n in eta(), k in kappa()) {
+        let r = conductor(c, n, k);
+        prop_assert!((0.0..=1.0).contains(&r), "{r}");
+        let ci = c.abs().min(1.0);
+        let (s, p) = complex_reference(ci, Complex::new(n, k));
+        let reference = (s.norm_sqr() + p.norm_sqr()) / 2.0;
+        let (s2, p2) = conductor_amplitudes(c, Complex::new(n, k));
+        let mine = (s2.norm_sqr() + p2.norm_sqr()) / 2.0;
+        if reference.is_finite() {
+            prop_assert!((r - reference).abs() < 1e-9, "{r} vs {reference}");
+            prop_assert!((s2 - s).norm() < 1e-9 && (p2 - p).norm() < 1e-9);
+        }
+        prop_assert!((r - mine).abs() < 1e-9, "{r} vs {mine}");
+    }
+
+    /// With k = 0 the conductor is the dielectric seen from outside, for η > 1 and η < 1
+    /// (TIR included: both give exactly 1).
+    #[test]
+    fn conductor_with_zero_k_is_dielectric(c in common::cos_theta(), n in eta()) {
+        let a = conductor(c, n, 0.0);
+        let b = dielectric(c, n);
+        prop_assert!((a - b).abs() < 1e-12, "{a} vs {b} at c={c} eta={n}");
+        if b == 1.0 && c > 0.0 && n < 1.0 {
+            prop_assert_eq!(a, 1.0);
+        }
+    }
+}
+
+// ----------------------------------------------------------------------------------------
+// Cook-Torrance (g, c)
+// ----------------------------------------------------------------------------------------
+
+proptest! {
+    #![proptest_config(common::config(256))]
+
+    #[test]
+    fn cook_torrance_gc_equals_sp_form(c in common::cos_theta(), eta in eta()) {
+        let a = cook_torrance_gc(c, eta);
+        let b = dielectric(c, eta);
+        prop_assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+        prop_assert!((0.0..=1.0).contains(&a));
+    }
+}
+
+#[test]
+fn cook_torrance_seed_transcription_is_wrong() {
+    // The seed prints g = √(n² + c²) − 1 and omits the factor ½. Taken literally, at normal
+    // incidence it gives 2·F0 for glass: the corrected form gives F0.
+    let seed = |c: f64, n: f64| {
+        let g = (n * n + c * c).sqrt() - 1.0;
+        (g - c).powi(2) / (g + c).powi(2)
+            * (1.0 + (c * (g + c) - 1.0).powi(2) / (c * (g - c) + 1.0).powi(2))
+    };
+    let (f0, literal) = (cook_torrance_gc(1.0f64, 1.5), seed(1.0, 1.5));
+    assert!((f0 - 0.04).abs() < 1e-16);
+    assert!((literal - 0.04).abs() > 0.01, "{literal}");
+    // TIR: g² < 0 → 1.
+    assert_eq!(cook_torrance_gc(0.2, 1.0 / 1.5), 1.0);
+}
+
+// ----------------------------------------------------------------------------------------
+// Schlick and F0 conversions
+// ----------------------------------------------------------------------------------------
+
+#[test]
+fn schlick_end_points_and_f90() {
+    for f0 in [0.0, 0.02, 0.04, 0.5, 0.9, 1.0] {
+        assert_eq!(schlick(f0, 1.0), f0);
+        assert_eq!(schlick(f0, 0.0), 1.0);
+        assert_eq!(schlick(f0, 1.0 + 1e-16), f0); // clamped
+        assert_eq!(schlick_f90(f0, 0.5, 0.0), 0.5);
+        assert_eq!(schlick_f90(f0, 1.0, 0.37), schlick(f0, 0.37));
+    }
+    assert_eq!(schlick_weight(0.5), 0.03125);
+    // Monotone decreasing in cos θ.
+    let mut prev = 2.0;
+    for i in 0..=100 {
+        let f = schlick(0.04, i as f64 / 100.0);
+        assert!(f <= prev);
+        prev = f;
+    }
+    // Schlick vs exact glass (η = 1.5): measured max error 0.0357 at cos θ ≈ 0.088 (85°),
+    // where the exact curve dips below Schlick's before rising to 1.
+    let mut worst = 0.0f64;
+    for i in 0..=10000 {
+        let c = i as f64 / 10000.0;
+        worst = worst.max((schlick(f0_from_ior(1.5), c) - dielectric(c, 1.5)).abs());
+    }
+    assert!(worst < 0.036 && worst > 0.035, "{worst}");
+}
+
+#[test]
+fn f0_conversions() {
+    for eta in [1.0f64, 1.33, 1.5, 2.4, 0.5, 1e-3, 1e3] {
+        assert!((f0_from_ior(eta) - dielectric(1.0, eta)).abs() < 1e-15);
+        assert!((f0_from_ior(eta) - f0_from_ior(1.0 / eta)).abs() < 1e-15);
+        assert!((f0_from_complex_ior(eta, 0.0) - f0_from_ior(eta)).abs() < 1e-15);
+        if eta >= 1.0 && eta < 1e3 {
+            assert!(
+                (ior_from_f0(f0_from_ior(eta)) - eta).abs() < 1e-12 * eta,
+                "{eta}"
+            );
+        }
+    }
+    for (n, k) in [(0.34f64, 3.2f64), (0.2, 3.5), (2.0, 1.0), (1e-3, 100.0)] {
+        assert!((f0_from_complex_ior(n, k) - conductor(1.0, n, k)).abs() < 1e-15);
+    }
+    assert_eq!(ior_from_f0(0.0), 1.0);
+    assert!((ior_from_f0(0.04f64) - 1.5).abs() < 1e-15);
+    // As F0 → 1, η ≈ 4/(1 − F0).
+    let f0 = 1.0f64 - 1e-6;
+    assert!((ior_from_f0(f0) * (1.0 - f0) - 4.0).abs() < 1e-5);
+    assert_eq!(ior_from_f0(1.0), f64::INFINITY);
+    // The validated constructor.
+    assert!(Dielectric::<f64>::from_f0(0.04).is_ok());
+    assert!((Dielectric::<f32>::from_f0(0.04).unwrap().eta() - 1.5).abs() < 1e-6);
+    assert!(Dielectric::<f32>::from_f0(1.0 - f32::EPSILON / 2.0).is_ok());
+    assert_eq!(
+        Dielectric::<f64>::from_f0(1.0),
+        Err(Error::OutOfDomain {
+            param: "f0",
+            value: 1.0,
+            domain: "[0, 1)"
+        })
+    );
+    assert!(Dielectric::<f64>::from_f0(-0.01).is_err());
+    assert_eq!(
+        Dielectric::<f32>::from_f0(f32::NAN),
+        Err(Error::NotFinite { param: "f0" })
+    );
+}
+
+// ----------------------------------------------------------------------------------------
+// F82-tint and Gulbrandsen
+// ----------------------------------------------------------------------------------------
+
+#[test]
+fn f82_tint_properties() {
+    let mu = F82_COS_THETA;
+    // μ(1 − μ)⁶ peaks at μ̄ = 1/7.
+    let w = |m: f64| m * (1.0 - m).powi(6);
+    assert!(w(mu) > w(mu - 1e-4) && w(mu) > w(mu + 1e-4));
+    for f0 in [0.0, 0.04, 0.5, 0.9, 1.0] {
+        for tint in [0.0, 0.3, 0.8, 1.0] {
+            let at = f82_tint(f0, tint, mu);
+            assert!((at - tint * schlick(f0, mu)).abs() < 1e-15, "{f0} {tint}");
+            assert_eq!(f82_tint(f0, tint, 1.0), f0);
+            assert_eq!(f82_tint(f0, tint, 0.0), 1.0);
+            let b = f82_b(f0, tint);
+            for c in [0.0, 0.1, 0.5, 0.9, 1.0] {
+                assert_eq!(f82_tint(f0, tint, c), f82_tint_with_b(f0, b, c));
+            }
+        }
+        // tint = 1 is Schlick.
+        assert_eq!(f82_tint(f0, 1.0, 0.33), schlick(f0, 0.33));
+    }
+    // The published curve goes negative for a strong correction (f0 = 0, tint = 0); the
+    // clamped one stays in [0, 1].
+    let raw = |c: f64| schlick(0.0, c) - f82_b(0.0, 0.0) * w(c);
+    assert!(raw(0.5) < 0.0);
+    assert_eq!(f82_tint(0.0, 0.0, 0.5), 0.0);
+}
+
+#[test]
+fn f82_fitted_to_ior_is_exact_at_three_points() {
+    for p in ior::METALS_RGB {
+        let m = F82Tint::<f64, 3>::from_rgb_preset(p);
+        let exact = Conductor::<f64, 3>::from_rgb_preset(p);
+        for c in [0.0, F82_COS_THETA, 1.0] {
+            let (a, b) = (m.eval(c), exact.eval(c));
+            for i in 0..3 {
+                assert!(
+                    (a[i] - b[i]).abs() < 1e-14,
+                    "{} {c} {i}: {} vs {}",
+                    p.name,
+                    a[i],
+                    b[i]
+                );
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(common::config(256))]
+
+    /// Gulbrandsen's mapping: F0(n, k) = r, the inverse recovers (r, g), and k² ≥ 0 over
+    /// the whole domain (no clamping needed).
+    #[test]
+    fn gulbrandsen_round_trip(r in prop_oneof![0.0f64..0.99, Just(0.0), Just(0.999)],
+                              g in prop_oneof![0.0f64..=1.0, Just(0.0), Just(1.0)]) {
+        let (n, k) = gulbrandsen_to_nk(r, g);
+        prop_assert!(n > 0.0 && k.is_finite());
+        prop_assert!((f0_from_complex_ior(n, k) - r).abs() < 1e-9, "{} vs {r}",
+            f0_from_complex_ior(n, k));
+        let (r2, g2) = gulbrandsen_from_nk(n, k);
+        prop_assert!((r2 - r).abs() < 1e-9);
+        if r > 1e-6 {
+            prop_assert!((g2 - g).abs() < 1e-6, "{g2} vs {g}");
+        }
+        if g == 0.0 {
+            prop_assert!(k < 1e-5 * n.max(1.0), "k {k}");
+        }
+        // Raw k², before the safe square root.
+        let (n_min, n_max) = ((1.0 - r) / (1.0 + r), (1.0 + r.sqrt()) / (1.0 - r.sqrt()));
+        prop_assert!(n >= n_min * (1.0 - 1e-12) && n <= n_max * (1.0 + 1e-12));
+    }
+}
+
+/// Maximum error over cos θ ∈ [0, 1] (10⁴ + 1 uniform points) of an approximation against
+/// the exact conductor Fresnel of one channel.
+fn max_error(approx: impl Fn(f64) -> f64, n: f64, k: f64) -> f64 {
+    (0..=10_000)
+        .map(|i| i as f64 / 10_000.0)
+        .map(|c| (approx(c) - conductor(c, n, k)).abs())
+        .fold(0.0, f64::max)
+}
+
+/// The accuracy table of the module docs: max |F − F_exact| per metal and channel for
+/// Schlick (with the exact F0) and F82-tint (fitted at μ = 1 and 1/7), and Gulbrandsen's
+/// round trip. Bounds are the measured maxima rounded up to two significant digits; the
+/// test also fails if a bound is more than ~10 % loose.
+#[test]
+fn metal_models_error_table() {
+    // (name, Schlick bounds R G B, F82 bounds R G B)
+    const BOUNDS: &[(&str, [f64; 3], [f64; 3])] = &[
+        ("gold", [0.016, 0.0096, 0.018], [0.0044, 0.0061, 0.017]),
+        ("silver", [0.0062, 0.0066, 0.0023], [0.0011, 0.0022, 0.0016]),
+        ("copper", [0.024, 0.039, 0.040], [0.0063, 0.0056, 0.0017]),
+        ("aluminium", [0.14, 0.11, 0.065], [0.023, 0.0091, 0.0061]),
+        ("iron", [0.18, 0.18, 0.15], [0.019, 0.019, 0.013]),
+        ("titanium", [0.19, 0.17, 0.14], [0.017, 0.012, 0.0080]),
+        ("chromium", [0.20, 0.20, 0.15], [0.022, 0.024, 0.0087]),
+    ];
+    assert_eq!(BOUNDS.len(), ior::METALS_RGB.len());
+    let tight = |err: f64, bound: f64, what: &str| {
+        let sig2 = {
+            let e = 10f64.powf(err.log10().floor() - 1.0);
+            (err / e).ceil() * e
+        };
+        println!("{what}: {err:.6} (suggested bound {sig2:.2e})");
+        assert!(err <= bound, "{what}: {err:.5} > bound {bound}");
+        assert!(
+            err > 0.9 * bound,
+            "{what}: bound {bound} is loose for {err:.5}"
+        );
+    };
+    for (p, (name, schlick_b, f82_b_)) in ior::METALS_RGB.iter().zip(BOUNDS) {
+        assert_eq!(&p.name, name);
+        let f82 = F82Tint::<f64, 3>::from_rgb_preset(p);
+        let mut line = format!("{:10}", p.name);
+        for i in 0..3 {
+            let (n, k) = (p.eta[i], p.k[i]);
+            let f0 = f0_from_complex_ior(n, k);
+            let e_s = max_error(|c| schlick(f0, c), n, k);
+            let e_f = max_error(|c| f82.eval(c)[i], n, k);
+            let (r, g) = gulbrandsen_from_nk(n, k);
+            assert!(
+                (0.0..=1.0 + 1e-9).contains(&g),
+                "{}: edge tint {g} outside [0, 1]",
+                p.name
+            );
+            let (n2, k2) = gulbrandsen_to_nk(r, g.min(1.0));
+            let e_g = max_error(|c| conductor(c, n2, k2), n, k);
+            tight(e_s, schlick_b[i], &format!("{} schlick ch{i}", p.name));
+            tight(e_f, f82_b_[i], &format!("{} f82 ch{i}", p.name));
+            assert!(e_f < e_s, "{}: F82 must beat Schlick", p.name);
+            assert!(e_g < 1e-12, "{}: Gulbrandsen round trip {e_g}", p.name);
+            line += &format!("  S {e_s:.4} F82 {e_f:.4} G {e_g:.0e} (g {g:.3})");
+        }
+        println!("{line}");
+    }
+}
+
+// ----------------------------------------------------------------------------------------
+// FresnelTerm types and validation
+// ----------------------------------------------------------------------------------------
+
+#[test]
+fn fresnel_terms_match_free_functions() {
+    let s = Schlick::<f64, 3>::with_f90([0.04, 0.5, 0.9], [1.0, 0.8, 0.5]).unwrap();
+    let c = Conductor::<f64, 3>::new([0.2, 0.5, 1.4], [3.5, 2.5, 1.9]).unwrap();
+    let f = F82Tint::<f64, 3>::new([0.9, 0.6, 0.3], [0.8, 0.9, 1.0]).unwrap();
+    let d = Dielectric::<f64>::new(1.5).unwrap();
+    for cos in [0.0, 1e-7, 0.3, 0.7, 1.0] {
+        let (es, ec, ef) = (s.eval(cos), c.eval(cos), f.eval(cos));
+        let ed: [f64; 3] = d.eval(cos);
+        for i in 0..3 {
+            assert_eq!(es[i], schlick_f90(s.f0()[i], s.f90()[i], cos));
+            assert_eq!(ec[i], conductor(cos, c.eta()[i], c.k()[i]));
+            assert_eq!(ef[i], f82_tint(f.f0()[i], [0.8, 0.9, 1.0][i], cos));
+            assert_eq!(ed[i], dielectric(cos, 1.5));
+        }
+        assert_eq!(FresnelTerm::<f64, 2>::eval(&NoFresnel, cos), [1.0; 2]);
+    }
+    // Precomputed coefficient.
+    assert_eq!(f.b()[0], f82_b(0.9, 0.8));
+    // Constructors from presets and from the artist parametrization.
+    let g = Conductor::<f32, 1>::from_preset(&ior::GOLD).unwrap();
+    assert!((g.eval(1.0)[0] - 0.887).abs() < 5e-4);
+    let a =
+        Conductor::<f64, 3>::from_reflectivity_edge_tint([0.9, 0.7, 0.4], [0.2, 0.5, 0.9]).unwrap();
+    let f0 = a.eval(1.0);
+    assert!((f0[0] - 0.9).abs() < 1e-12 && (f0[2] - 0.4).abs() < 1e-12);
+    let sc = Schlick::<f64, 2>::from_complex_ior([0.34, 1.5], [3.2, 0.0]).unwrap();
+    assert!((sc.f0()[0] - conductor(1.0, 0.34, 3.2)).abs() < 1e-15);
+    assert!((Schlick::<f32, 1>::from_ior([1.5]).unwrap().f0()[0] - 0.04).abs() < 1e-8);
+}
+
+#[test]
+fn constructors_reject_bad_parameters() {
+    fn nf<T>(param: &'static str) -> Result<T, Error> {
+        Err(Error::NotFinite { param })
+    }
+    assert_eq!(Schlick::<f32, 1>::new([f32::NAN]), nf("f0"));
+    assert!(matches!(
+        Schlick::<f32, 2>::new([0.5, 1.5]),
+        Err(Error::OutOfDomain { param: "f0", .. })
+    ));
+    assert!(matches!(
+        Schlick::<f64, 1>::with_f90([0.5], [-0.1]),
+        Err(Error::OutOfDomain { param: "f90", .. })
+    ));
+    assert!(Schlick::<f64, 1>::from_ior([0.0]).is_err());
+    assert!(Schlick::<f64, 1>::from_complex_ior([1.0], [-1.0]).is_err());
+    assert_eq!(Dielectric::<f64>::new(f64::INFINITY), nf("eta"));
+    assert!(matches!(
+        Dielectric::<f64>::new(-1.5),
+        Err(Error::OutOfDomain { param: "eta", .. })
+    ));
+    assert!(matches!(
+        Conductor::<f64, 1>::new([0.0], [1.0]),
+        Err(Error::OutOfDomain { param: "eta", .. })
+    ));
+    assert!(matches!(
+        Conductor::<f64, 1>::new([0.2], [-3.0]),
+        Err(Error::OutOfDomain { param: "k", .. })
+    ));
+    assert_eq!(Conductor::<f32, 1>::new([0.2], [f32::NAN]), nf("k"));
+    assert!(matches!(
+        Conductor::<f64, 1>::from_reflectivity_edge_tint([1.0], [0.5]),
+        Err(Error::OutOfDomain { param: "r", .. })
+    ));
+    assert!(Conductor::<f64, 1>::from_reflectivity_edge_tint([0.5], [1.5]).is_err());
+    assert!(matches!(
+        F82Tint::<f64, 1>::new([0.5], [1.2]),
+        Err(Error::OutOfDomain { param: "tint", .. })
+    ));
+    assert!(F82Tint::<f64, 1>::new([-0.5], [0.2]).is_err());
+    assert!(F82Tint::<f64, 1>::from_ior([f64::NAN], [0.2]).is_err());
+}
+
+// ----------------------------------------------------------------------------------------
+// Extremes: no NaN or ∞ on f32 and f64
+// ----------------------------------------------------------------------------------------
+
+fn all_finite_in_unit<S: brdf::Scalar>(c: f64, n: f64, k: f64) -> Result<(), TestCaseError> {
+    let (c, n, k) = (S::of(c), S::of(n), S::of(k));
+    let unit = |x: S, what: &str| -> Result<(), TestCaseError> {
+        let v: f64 = x.into();
+        prop_assert!(v.is_finite() && (0.0..=1.0).contains(&v), "{what} = {v}");
+        Ok(())
+    };
+    unit(dielectric(c, n), "dielectric")?;
+    unit(dielectric_transmittance(c, n), "dielectric_transmittance")?;
+    let a = dielectric_amplitudes(c, n);
+    unit(a.transmittance(), "amplitudes transmittance")?;
+    for x in [a.r_s, a.r_p, a.t_s, a.t_p, a.cos_theta_t] {
+        prop_assert!(x.is_finite());
+    }
+    unit(conductor(c, n, k), "conductor")?;
+    let (s, p) = conductor_amplitudes(c, Complex::new(n, k));
+    prop_assert!(s.re.is_finite() && s.im.is_finite() && p.re.is_finite() && p.im.is_finite());
+    unit(cook_torrance_gc(c, n), "cook_torrance_gc")?;
+    let f0 = f0_from_complex_ior(n, k);
+    unit(f0, "f0_from_complex_ior")?;
+    unit(f0_from_ior(n), "f0_from_ior")?;
+    unit(schlick(f0, c), "schlick")?;
+    unit(schlick_f90(f0, S::of(0.5), c), "schlick_f90")?;
+    unit(f82_tint(f0, S::of(0.7), c), "f82_tint")?;
+    let r = f0.min(S::of(0.99));
+    prop_assert!(ior_from_f0(r).is_finite());
+    let (gn, gk) = gulbrandsen_to_nk(r, S::of(0.5));
+    prop_assert!(gn.is_finite() && gk.is_finite());
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(common::config(256))]
+
+    #[test]
+    fn no_nan_at_extremes(c in signed_cos(), n in eta(), k in kappa()) {
+        all_finite_in_unit::<f64>(c, n, k)?;
+        all_finite_in_unit::<f32>(c, n, k)?;
+        // A rounding step outside [−1, 1] in f32, too.
+        all_finite_in_unit::<f32>(f64::from(1.0f32 + f32::EPSILON), n, k)?;
+        all_finite_in_unit::<f32>(f64::from(-1.0f32 - f32::EPSILON), n, k)?;
+    }
+
+    /// f32 agrees with f64 away from the steep vicinity of the critical angle.
+    #[test]
+    fn f32_agrees_with_f64(c in common::cos_theta(), n in eta(), k in kappa()) {
+        let g2 = n * n - 1.0 + c * c;
+        if g2.abs() > 1e-2 {
+            let d = dielectric(c as f32, n as f32) as f64 - dielectric(c, n);
+            prop_assert!(d.abs() < 2e-5, "dielectric {d}");
+        }
+        let d = conductor(c as f32, n as f32, k as f32) as f64 - conductor(c, n, k);
+        if g2.abs() > 1e-2 || k > 0.1 {
+            prop_assert!(d.abs() < 2e-5, "conductor {d}");
+        }
+    }
+}
+
+// ----------------------------------------------------------------------------------------
+// SIMD lanes
+// ----------------------------------------------------------------------------------------
+
+/// Rows (cos, eta, k) including every extreme.
+fn lane_rows() -> Vec<[f64; 3]> {
+    let cosines = [
+        0.0,
+        1e-7,
+        -1e-7,
+        0.01,
+        0.3,
+        0.5,
+        0.7071,
+        0.99,
+        1.0,
+        -1.0,
+        -0.4,
+        1.0 + 1e-7,
+        -1.0 - 1e-7,
+    ];
+    let etas = [
+        1e-3,
+        0.2,
+        0.6667,
+        1.0 - 1e-6,
+        1.0,
+        1.0 + 1e-6,
+        1.33,
+        1.5,
+        2.4,
+        10.0,
+        1e3,
+    ];
+    let ks = [0.0, 1e-3, 0.5, 3.2, 100.0];
+    let mut rows = Vec::new();
+    for (i, &c) in cosines.iter().enumerate() {
+        for (j, &e) in etas.iter().enumerate() {
+            rows.push([c, e, ks[(i + j) % ks.len()]]);
+        }
+    }
+    rows
+}
+
+#[test]
+fn lanes_match_scalar() {
+    let rows = lane_rows();
+    // f0/tint-style rows in [0, 1].
+    let unit_rows: Vec<[f64; 3]> = rows
+        .iter()
+        .map(|r| {
+            [
+                r[0],
+                fresnel::f0_from_complex_ior(r[1], r[2]),
+                (r[2] / 100.0).min(1.0),
+            ]
+        })
+        .collect();
+    // Only + − × ÷ √ and fused multiply-add (identical on lanes): bit-exact, 0 ULP.
+    let mut report = Vec::new();
+    macro_rules! check {
+        ($name:expr, $rows:expr, fn($($a:ident),+) $body:block) => {{
+            let w = common::assert_lanes_match!($name, ulp = 0, abs = 0.0, $rows, fn($($a),+) $body);
+            report.push(($name, w));
+        }};
+    }
+    check!("dielectric", &rows, fn(c, e, k) { fresnel::dielectric(c, e) });
+    check!("dielectric_transmittance", &rows, fn(c, e, k) { fresnel::dielectric_transmittance(c, e) });
+    check!("amplitudes.r_s", &rows, fn(c, e, k) { fresnel::dielectric_amplitudes(c, e).r_s });
+    check!("amplitudes.r_p", &rows, fn(c, e, k) { fresnel::dielectric_amplitudes(c, e).r_p });
+    check!("amplitudes.t_s", &rows, fn(c, e, k) { fresnel::dielectric_amplitudes(c, e).t_s });
+    check!("amplitudes.t_p", &rows, fn(c, e, k) { fresnel::dielectric_amplitudes(c, e).t_p });
+    check!("amplitudes.transmittance", &rows, fn(c, e, k) {
+        fresnel::dielectric_amplitudes(c, e).transmittance()
+    });
+    check!("conductor", &rows, fn(c, e, k) { fresnel::conductor(c, e, k) });
+    check!("conductor_amplitudes.re", &rows, fn(c, e, k) {
+        let (s, p) = fresnel::conductor_amplitudes(c, num_complex::Complex::new(e, k));
+        s.re + p.re * R::from_f64(3.0)
+    });
+    check!("conductor_amplitudes.im", &rows, fn(c, e, k) {
+        let (s, p) = fresnel::conductor_amplitudes(c, num_complex::Complex::new(e, k));
+        s.im + p.im * R::from_f64(3.0)
+    });
+    check!("cook_torrance_gc", &rows, fn(c, e, k) { fresnel::cook_torrance_gc(c, e) });
+    check!("f0_from_ior", &rows, fn(c, e, k) { fresnel::f0_from_ior(e) });
+    check!("f0_from_complex_ior", &rows, fn(c, e, k) { fresnel::f0_from_complex_ior(e, k) });
+    check!("ior_from_f0", &unit_rows, fn(c, f0, t) { fresnel::ior_from_f0(f0.min(R::from_f64(0.999))) });
+    check!("schlick", &unit_rows, fn(c, f0, t) { fresnel::schlick(f0, c) });
+    check!("schlick_f90", &unit_rows, fn(c, f0, t) { fresnel::schlick_f90(f0, t, c) });
+    check!("f82_tint", &unit_rows, fn(c, f0, t) { fresnel::f82_tint(f0, t, c) });
+    check!("gulbrandsen_to_nk", &unit_rows, fn(c, f0, t) {
+        let (n, k) = fresnel::gulbrandsen_to_nk(f0.min(R::from_f64(0.99)), t);
+        n + k
+    });
+    check!("gulbrandsen_from_nk", &rows, fn(c, e, k) {
+        let (r, g) = fresnel::gulbrandsen_from_nk(e, k);
+        r + g
+    });
+    println!("worst ULP per formula: {report:?}");
+}
