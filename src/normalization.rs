@@ -259,7 +259,7 @@ pub fn tri_ace_exact_offset<R: Real>(s: R) -> R {
 ///
 /// ```text
 /// f(wi, wo) = c(s) · F(f0, wi·wm) · (N·H)^s / max(N·L, N·V)
-/// c(s) = 0.0397436 s + 0.0856832  =  (0.998866 s + 2.15352) / (8π)
+/// c(s) = 0.0397436 s + 0.0856832  =  (0.998866 s + 2.15345) / (8π)
 /// ```
 ///
 /// Gotanda's SIGGRAPH 2010 course notes give these constants for that model (the
@@ -638,7 +638,7 @@ fn grid_point(s_min: f64, s_max: f64, t: f64) -> f64 {
 /// Linear interpolation of the exact factor [`tri_ace_exact`] is very accurate because
 /// `c(s) = (s + n₀(s))/(8π)` is linear in `s` up to the slowly varying
 /// [`tri_ace_exact_offset`] `n₀`: the error is `h²/8 · |n₀''|/(s + n₀)` at most, with
-/// `|n₀''| ≤ 0.056`. With `N = 256` over `[0, 255]` (`h = 1`) it stays below `1.8e−3`
+/// `|n₀''| ≤ 0.056`. With `N = 256` over `[0, 255]` (`h = 1`) it stays below `1.6e−3`
 /// relative, near `s = 0` only, and below the `f32` rounding from `s ≈ 60` on (measured in
 /// `tests/normalization.rs`) — far better than the fit `(s + 2.04)/(8π)` at low `s`.
 ///
@@ -847,7 +847,7 @@ fn error_extremes(offset: f64, a: f64, b: f64) -> (f64, f64, f64, f64) {
 /// is refined by golden-section search to full precision. For `offset ≤ 2`, `e` increases
 /// monotonically; for `2 < offset ≤ 4` it rises to one interior maximum and then decays
 /// (`e′(s) ∝ (s + n)(s + 2)·(ln 2/2)·2^(−s/2) − (n − 2)(2 − 2^(−s/2))`); both shapes are
-/// resolved by the grid (checked against a 10⁵-point scan in the tests).
+/// resolved by the grid (checked against a dense scan in the tests).
 ///
 /// # Errors
 ///
