@@ -1,0 +1,437 @@
+//! Directional and hemispherical albedo by adaptive quadrature in the half-vector domain.
+
+use super::quadrature::{MAX_PANELS, Quad, adaptive};
+use crate::Vec3;
+use crate::math::f64m;
+use crate::models::{Brdf, Properties};
+use core::f64::consts::{FRAC_PI_4, PI};
+
+/// Accuracy and effort of [`directional_albedo`].
+///
+/// The integrator stops when its error estimate, summed over panels and taken as the
+/// maximum over channels, is at most `tolerance` (absolute, in albedo units), or when a
+/// panel budget is spent. The estimate is conservative for smooth integrands: the measured
+/// error of the default configuration is far below `tolerance` (see the module docs).
+///
+/// Cost is at most `max_panels_theta · 15 · max_panels_phi · 15` BRDF evaluations
+/// (≈ 1.7 million at the limits); typical calls use 2·10³–4·10⁴.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AlbedoConfig {
+    /// Target absolute error of each channel's albedo (default `1e-6`).
+    pub tolerance: f64,
+    /// Panel budget of the outer integral over `θm` (clamped to `1..=128`; default 64).
+    pub max_panels_theta: usize,
+    /// Panel budget of each inner integral over `φm` (clamped to `1..=128`; default 32).
+    pub max_panels_phi: usize,
+}
+
+impl AlbedoConfig {
+    /// Default: `tolerance = 1e-6`, 64 × 32 panels. Meets `1e-4` with a wide margin on every
+    /// validated case (Lambert at grazing, Blinn-Phong up to s = 10⁴, GGX/Beckmann down to
+    /// α = 10⁻³).
+    pub const DEFAULT: Self = Self {
+        tolerance: 1e-6,
+        max_panels_theta: 64,
+        max_panels_phi: 32,
+    };
+
+    /// A cheaper setting for property tests: `tolerance = 1e-4`, 48 × 24 panels.
+    pub const FAST: Self = Self {
+        tolerance: 1e-4,
+        max_panels_theta: 48,
+        max_panels_phi: 24,
+    };
+
+    /// `DEFAULT` with another tolerance.
+    #[must_use]
+    pub const fn with_tolerance(tolerance: f64) -> Self {
+        Self {
+            tolerance,
+            ..Self::DEFAULT
+        }
+    }
+}
+
+impl Default for AlbedoConfig {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// An integral with its error estimate and cost.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AlbedoEstimate<const N: usize> {
+    /// The integral per channel.
+    pub value: [f64; N],
+    /// Error estimate: absolute, maximum over channels (an upper bound in practice, not a
+    /// guarantee: a lobe narrower than the sampling that no node touches is invisible).
+    pub error: f64,
+    /// Number of `Brdf::eval` calls made.
+    pub evaluations: u64,
+}
+
+impl<const N: usize> From<Quad<N>> for AlbedoEstimate<N> {
+    fn from(q: Quad<N>) -> Self {
+        Self {
+            value: q.value,
+            error: q.error,
+            evaluations: q.evaluations,
+        }
+    }
+}
+
+/// Directional albedo `ρ(wo)` of each channel.
+///
+/// ```text
+/// ρ(wo) = ∫_{H²} f(wi, wo) cos θi dωi
+/// ```
+///
+/// `wo` need not be normalized; `ρ = 0` when `wo.z ≤ 0` (the BRDF is zero there by
+/// convention) or `wo` is zero or not finite. This is [`directional_albedo_estimate`] without
+/// the error estimate: see it for the method, the accuracy and the cost.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::analysis::{AlbedoConfig, directional_albedo};
+/// use brdf::models::{Brdf, Energy, Properties, Reciprocity};
+/// use brdf::Vec3;
+///
+/// /// Lambert with reflectance 0.8: f = 0.8/π.
+/// struct Lambert;
+/// impl Brdf<f64, 1> for Lambert {
+///     fn eval(&self, wi: Vec3<f64>, wo: Vec3<f64>) -> [f64; 1] {
+///         [if wi.z > 0.0 && wo.z > 0.0 { 0.8 / core::f64::consts::PI } else { 0.0 }]
+///     }
+///     fn properties(&self) -> Properties {
+///         Properties { reciprocity: Reciprocity::Reciprocal, energy: Energy::Conserving }
+///     }
+/// }
+///
+/// // Grazing view, cos θo = 1e-4: still 0.8.
+/// let wo = Vec3::new((1.0f64 - 1e-8).sqrt(), 0.0, 1e-4);
+/// let [rho] = directional_albedo(&Lambert, wo, &AlbedoConfig::default());
+/// assert!((rho - 0.8).abs() < 1e-6);
+/// ```
+#[must_use]
+pub fn directional_albedo<B, const N: usize>(
+    brdf: &B,
+    wo: Vec3<f64>,
+    cfg: &AlbedoConfig,
+) -> [f64; N]
+where
+    B: Brdf<f64, N> + ?Sized,
+{
+    directional_albedo_estimate(brdf, wo, cfg).value
+}
+
+/// Directional albedo `ρ(wo)` with its error estimate and evaluation count.
+///
+/// ```text
+/// ρ(wo) = ∫_{H²} f(wi, wo) cos θi dωi
+///       = ∫∫ f(wi, wo) cos θi · 4 (wo·wm) sin θm dφm dθm,   wi = 2 (wo·wm) wm − wo
+/// ```
+///
+/// **Method.** The integral is taken over the microfacet normal (half vector) `wm`, in
+/// spherical coordinates `(θm, φm)` about the surface normal, with the Jacobian
+/// `dωi = 4 |wo·wm| dωm` of the reflection map `wm ↦ wi` (Walter et al. 2007, eq. 14). Every
+/// `wi` of the upper hemisphere is the image of exactly one `wm` with `wm.z > 0`,
+/// `wo·wm > 0`; its pre-image is computed in closed form, so the integration domain is exact
+/// and the integrand has no cut inside it:
+///
+/// ```text
+/// wi.z > 0  ⇔  |φm − φo| < Δ(θm),   cos Δ = −cos θo cos 2θm / (2 cos θm sin θm sin θo)
+/// θm ∈ [0, π/4 + θo/2]   (Δ = π below θm = π/4 − θo/2)
+/// ```
+///
+/// The outer integral over `θm` and, for each outer node, the inner integral over
+/// `φm ∈ [φo − Δ, φo + Δ]` use globally adaptive Gauss–Kronrod (7, 15) quadrature
+/// (Piessens et al., QUADPACK, 1983), on fixed stack storage (no allocation). Initial panel
+/// edges sit where lobes live: `θm = 0` (mirror direction, where the specular peak of every
+/// microfacet model is; plus graded edges at 10⁻⁴, 10⁻³, 10⁻², 10⁻¹), `θm = θo/2`
+/// (`wi = n`), `θm = θo` (retro-reflection `wi = wo`), `φm = φo` (plane of incidence), and
+/// at the kinks of `Δ(θm)`. Gauss–Kronrod nodes cluster at panel edges, so lobes centred on
+/// these directions are found at any sharpness; other lobes are found when some node sees
+/// them (width ≳ 0.01 rad), then refined adaptively.
+///
+/// **Accuracy.** The error estimate `max_c |K15 − G7|` (plus propagated inner errors) is
+/// driven below `cfg.tolerance`. Measured against closed forms (tests/analysis.rs): Lambert
+/// at `cos θo` down to 1e-7, normalized Phong and Blinn-Phong lobes up to exponent 10⁴, GGX
+/// and Beckmann with `α` down to 10⁻³ are within 1e-9 … 1e-7 with the default tolerance
+/// 1e-6. Results are deterministic.
+///
+/// **Cost.** Typically 2·10³ (Lambert) to 4·10⁴ (sharp or grazing lobes) BRDF
+/// evaluations; bounded by `cfg.max_panels_theta · cfg.max_panels_phi · 225`. When the
+/// budget runs out, the returned `error` exceeds `tolerance`; check it.
+///
+/// References: B. Walter, S. R. Marschner, H. Li, K. E. Torrance, "Microfacet Models for
+/// Refraction through Rough Surfaces", EGSR 2007 (half-vector Jacobian); M. Pharr, W. Jakob,
+/// G. Humphreys, *Physically Based Rendering*, 4th ed., 2023, §9.1 (directional albedo
+/// `ρ_hd`).
+#[must_use]
+pub fn directional_albedo_estimate<B, const N: usize>(
+    brdf: &B,
+    wo: Vec3<f64>,
+    cfg: &AlbedoConfig,
+) -> AlbedoEstimate<N>
+where
+    B: Brdf<f64, N> + ?Sized,
+{
+    albedo_quad(brdf, wo, cfg).into()
+}
+
+fn albedo_quad<B, const N: usize>(brdf: &B, wo: Vec3<f64>, cfg: &AlbedoConfig) -> Quad<N>
+where
+    B: Brdf<f64, N> + ?Sized,
+{
+    let len = wo.length();
+    if !(len > 0.0 && len.is_finite()) {
+        return Quad::ZERO;
+    }
+    let wo = wo.scale(1.0 / len);
+    if !(wo.z > 0.0) {
+        return Quad::ZERO;
+    }
+    let cos_o = wo.z;
+    let sin_o = f64m::sqrt(wo.x * wo.x + wo.y * wo.y);
+    let (cos_phi_o, sin_phi_o) = if sin_o > 0.0 {
+        (wo.x / sin_o, wo.y / sin_o)
+    } else {
+        (1.0, 0.0)
+    };
+    let theta_o = super::angle(sin_o, cos_o);
+    let theta_max = FRAC_PI_4 + 0.5 * theta_o;
+
+    // Initial panel edges in θm.
+    let mut breaks = [0.0f64; 10];
+    let candidates = [
+        0.0,
+        1e-4,
+        1e-3,
+        1e-2,
+        1e-1,
+        0.5 * theta_o,
+        theta_o,
+        FRAC_PI_4 - 0.5 * theta_o,
+        theta_max,
+    ];
+    let mut n = 0;
+    for &c in &candidates {
+        if (0.0..=theta_max).contains(&c) {
+            breaks[n] = c;
+            n += 1;
+        }
+    }
+    let breaks = &mut breaks[..n];
+    breaks.sort_unstable_by(f64::total_cmp);
+    let mut m = 1;
+    for i in 1..breaks.len() {
+        if breaks[i] - breaks[m - 1] > 1e-12 {
+            breaks[m] = breaks[i];
+            m += 1;
+        }
+    }
+    let breaks = &breaks[..m];
+
+    let inner_tol = 0.25 * cfg.tolerance / theta_max;
+    let max_phi = cfg.max_panels_phi.clamp(1, MAX_PANELS);
+    adaptive(
+        |theta_m| {
+            let (s_m, c_m) = (f64m::sin(theta_m), f64m::cos(theta_m));
+            // wi.z > 0  ⇔  sin θm sin θo cos Δ > −cos θo cos 2θm / (2 cos θm).
+            let a = s_m * sin_o;
+            let t = -cos_o * (c_m - s_m) * (c_m + s_m) / (2.0 * c_m);
+            let delta = if a > 0.0 {
+                let c = (t / a).clamp(-1.0, 1.0);
+                super::angle(f64m::sqrt((1.0 - c) * (1.0 + c)), c)
+            } else if t < 0.0 {
+                PI
+            } else {
+                0.0
+            };
+            if !(delta > 0.0) || !(c_m > 0.0) {
+                return Quad::ZERO;
+            }
+            adaptive(
+                |d| {
+                    let (s_d, c_d) = (f64m::sin(d), f64m::cos(d));
+                    let cos_phi = cos_phi_o * c_d - sin_phi_o * s_d;
+                    let sin_phi = sin_phi_o * c_d + cos_phi_o * s_d;
+                    let wm = Vec3::new(s_m * cos_phi, s_m * sin_phi, c_m);
+                    let o_m = wo.dot(wm);
+                    let wi = wm.scale(2.0 * o_m).add(wo.scale(-1.0));
+                    if !(wi.z > 0.0 && o_m > 0.0) {
+                        return Quad {
+                            value: [0.0; N],
+                            error: 0.0,
+                            evaluations: 0,
+                        };
+                    }
+                    let f = brdf.eval(wi, wo);
+                    let jac = wi.z * 4.0 * o_m * s_m;
+                    Quad {
+                        value: f.map(|v| v * jac),
+                        error: 0.0,
+                        evaluations: 1,
+                    }
+                },
+                // Two panels per side: a narrow sliver of a feature cut by this θm line is
+                // still seen by some node (a single panel can miss it entirely).
+                &[-delta, -0.5 * delta, 0.0, 0.5 * delta, delta],
+                inner_tol,
+                max_phi,
+            )
+        },
+        breaks,
+        cfg.tolerance,
+        cfg.max_panels_theta,
+    )
+}
+
+/// Accuracy and effort of [`hemispherical_albedo`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HemisphericalConfig {
+    /// Target absolute error of the outer integral over `cos θo` (default `1e-5`).
+    pub tolerance: f64,
+    /// Equally spaced azimuths `φo` averaged (default 8). Exact for a `ρ(φo)` that is a
+    /// trigonometric polynomial of degree `< phi_samples`; `1` suffices for isotropic BRDFs.
+    pub phi_samples: usize,
+    /// Panel budget of the outer integral (clamped to `1..=128`; default 16).
+    pub max_panels: usize,
+    /// Configuration of each directional albedo (default [`AlbedoConfig::DEFAULT`]).
+    pub albedo: AlbedoConfig,
+}
+
+impl HemisphericalConfig {
+    /// Default: `tolerance = 1e-5`, 8 azimuths, 16 panels, [`AlbedoConfig::DEFAULT`].
+    pub const DEFAULT: Self = Self {
+        tolerance: 1e-5,
+        phi_samples: 8,
+        max_panels: 16,
+        albedo: AlbedoConfig::DEFAULT,
+    };
+
+    /// For isotropic BRDFs (`ρ` independent of `φo`): one azimuth, 8× cheaper.
+    pub const ISOTROPIC: Self = Self {
+        phi_samples: 1,
+        ..Self::DEFAULT
+    };
+}
+
+impl Default for HemisphericalConfig {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// Hemispherical–hemispherical albedo (cosine-weighted average of [`directional_albedo`]).
+///
+/// ```text
+/// ρ_hh = (1/π) ∫_{H²} ρ(wo) cos θo dωo = (1/π) ∫₀^{2π} ∫₀¹ ρ(μ, φo) μ dμ dφo,   μ = cos θo
+/// ```
+///
+/// **Method.** Adaptive Gauss–Kronrod (7, 15) over `μ ∈ [0, 1]`, the trapezoidal rule over
+/// `cfg.phi_samples` equally spaced azimuths `φo = 2π (j + ½)/P` (spectrally accurate for
+/// smooth periodic `ρ(φo)`), and [`directional_albedo_estimate`] at each node. The returned
+/// error estimate adds the outer estimate and the propagated inner ones.
+///
+/// **Cost.** At least `15 · phi_samples` directional albedos (≈ 15 × 10⁴ BRDF evaluations
+/// with [`HemisphericalConfig::ISOTROPIC`]).
+///
+/// Reference: M. Pharr, W. Jakob, G. Humphreys, *Physically Based Rendering*, 4th ed., 2023,
+/// §4.3.2 (hemispherical-hemispherical reflectance `ρ_hh`).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::analysis::{HemisphericalConfig, hemispherical_albedo};
+/// use brdf::models::{Brdf, Energy, Properties, Reciprocity};
+/// use brdf::Vec3;
+///
+/// /// A BRDF rising linearly with both cosines: f = 3 (cos θi + cos θo) / (4π).
+/// struct Rising;
+/// impl Brdf<f64, 1> for Rising {
+///     fn eval(&self, wi: Vec3<f64>, wo: Vec3<f64>) -> [f64; 1] {
+///         let ok = wi.z > 0.0 && wo.z > 0.0;
+///         [if ok { 3.0 * (wi.z + wo.z) / (4.0 * core::f64::consts::PI) } else { 0.0 }]
+///     }
+///     fn properties(&self) -> Properties {
+///         Properties { reciprocity: Reciprocity::Reciprocal, energy: Energy::Conserving }
+///     }
+/// }
+///
+/// // ρ(wo) = 1/2 + 3 cos θo / 4, so ρ_hh = 2 ∫₀¹ (1/2 + 3μ/4) μ dμ = 1.
+/// let est = hemispherical_albedo(&Rising, &HemisphericalConfig::ISOTROPIC);
+/// assert!((est.value[0] - 1.0).abs() < 1e-6);
+/// ```
+#[must_use]
+pub fn hemispherical_albedo<B, const N: usize>(
+    brdf: &B,
+    cfg: &HemisphericalConfig,
+) -> AlbedoEstimate<N>
+where
+    B: Brdf<f64, N> + ?Sized,
+{
+    let p = cfg.phi_samples.max(1);
+    let scale = 2.0 / p as f64; // (1/π) · (2π/P)
+    adaptive(
+        |mu: f64| {
+            let mut q = Quad::<N>::ZERO;
+            let sin_o = f64m::sqrt((1.0 - mu) * (1.0 + mu));
+            for j in 0..p {
+                let phi = 2.0 * PI * (j as f64 + 0.5) / p as f64;
+                let wo = Vec3::new(sin_o * f64m::cos(phi), sin_o * f64m::sin(phi), mu);
+                let r = albedo_quad(brdf, wo, &cfg.albedo);
+                for ch in 0..N {
+                    q.value[ch] += scale * mu * r.value[ch];
+                }
+                q.error += scale * mu * r.error;
+                q.evaluations += r.evaluations;
+            }
+            q
+        },
+        &[0.0, 1.0],
+        cfg.tolerance,
+        cfg.max_panels,
+    )
+    .into()
+}
+
+/// Evaluates an `f32` BRDF through the `f64` interface (directions rounded to `f32`, values
+/// widened), so that the analysis functions apply to `Brdf<f32, N>` models too.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::analysis::{AlbedoConfig, F32Brdf, directional_albedo};
+/// use brdf::models::{Brdf, Energy, Properties, Reciprocity};
+/// use brdf::Vec3;
+///
+/// struct LambertF32;
+/// impl Brdf<f32, 1> for LambertF32 {
+///     fn eval(&self, wi: Vec3<f32>, wo: Vec3<f32>) -> [f32; 1] {
+///         [if wi.z > 0.0 && wo.z > 0.0 { core::f32::consts::FRAC_1_PI } else { 0.0 }]
+///     }
+///     fn properties(&self) -> Properties {
+///         Properties { reciprocity: Reciprocity::Reciprocal, energy: Energy::Conserving }
+///     }
+/// }
+///
+/// let [rho] = directional_albedo(&F32Brdf(LambertF32), Vec3::new(0.6, 0.0, 0.8), &AlbedoConfig::FAST);
+/// assert!((rho - 1.0).abs() < 1e-6);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct F32Brdf<B>(pub B);
+
+impl<B: Brdf<f32, N>, const N: usize> Brdf<f64, N> for F32Brdf<B> {
+    #[inline]
+    fn eval(&self, wi: Vec3<f64>, wo: Vec3<f64>) -> [f64; N] {
+        let c = |w: Vec3<f64>| Vec3::new(w.x as f32, w.y as f32, w.z as f32);
+        self.0.eval(c(wi), c(wo)).map(f64::from)
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        self.0.properties()
+    }
+}

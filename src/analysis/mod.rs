@@ -1,0 +1,117 @@
+//! Numerical analysis of BRDFs: directional and hemispherical albedo, white-furnace and
+//! reciprocity checks, deterministic direction sets.
+//!
+//! These tools let engine developers check their own materials (any [`Brdf<f64, N>`], or a
+//! `Brdf<f32, N>` through [`F32Brdf`]) against the physical properties the crate's models
+//! declare in [`Properties`](crate::models::Properties):
+//!
+//! | Tool | Computes |
+//! |---|---|
+//! | [`directional_albedo`], [`directional_albedo_estimate`] | `ρ(wo) = ∫ f(wi, wo) cos θi dωi` per channel |
+//! | [`hemispherical_albedo`] | `ρ_hh = (1/π) ∫ ρ(wo) cos θo dωo` |
+//! | [`white_furnace`] | max / min of `ρ(wo)` over a set of `wo` ([`FurnaceReport`]) |
+//! | [`reciprocity_check`] | worst `|f(wi, wo) − f(wo, wi)|` over pairs ([`Violation`]) |
+//! | [`DirectionGrid`], [`fibonacci_hemisphere`], [`uniform_hemisphere`], [`cosine_hemisphere`] | deterministic direction sets and warps |
+//!
+//! ## Method, accuracy and cost
+//!
+//! The albedo integral is computed deterministically in the half-vector domain, where the
+//! specular peak of every microfacet or Phong-type lobe sits at a fixed point (`wm = n`)
+//! whatever `wo` is, with the exact pre-image of the upper hemisphere as the domain and
+//! nested globally adaptive Gauss–Kronrod (7, 15) quadrature (see
+//! [`directional_albedo_estimate`]). Nothing is allocated: panels live in fixed stack arrays
+//! (≤ 128 per level, ≈ 2 × 128 × (N + 3) × 8 bytes of stack), so the module works in
+//! `no_std` without `alloc`.
+//!
+//! Validated in `tests/analysis.rs` against closed forms, with [`AlbedoConfig::DEFAULT`]
+//! (tolerance 1e-6):
+//!
+//! | Case | `cos θo` | Worst error |
+//! |---|---|---|
+//! | Lambert | 1 … 1e-7 | ≤ 1e-12 |
+//! | Normalized cosine lobe about `n`, `(n+2)/(2π) cosⁿθi`, n ≤ 10⁴ | 1 … 1e-4 | ≤ 1e-8 |
+//! | Phong lobes about the mirror and retro directions, n ≤ 10⁴ (independent 1D reference) | 1 … 1e-4 | ≤ 1e-8 |
+//! | Blinn-Phong `(n·h)ˢ`, s ≤ 10⁴ (closed form) | 1 | ≤ 1e-9 |
+//! | GGX / Beckmann `D/(4 cos θi cos θo)`, α ≥ 10⁻³ (closed form) | 1 | ≤ 1e-9 |
+//!
+//! A lobe is resolved at any sharpness when it is centred on the mirror direction, the
+//! normal or the retro-reflection direction, or lies in the plane of incidence; lobes
+//! elsewhere are found when they are wider than about 0.01 rad, then refined adaptively.
+//! Cost: 10³–10⁵ BRDF evaluations per albedo (≈ 0.1–5 ms for a cheap BRDF in release).
+//!
+//! ## References
+//!
+//! * B. Walter, S. R. Marschner, H. Li, K. E. Torrance, "Microfacet Models for Refraction
+//!   through Rough Surfaces", EGSR 2007 (half-vector Jacobian `dωi = 4 |wo·wm| dωm`).
+//! * R. Piessens, E. de Doncker-Kapenga, C. W. Überhuber, D. K. Kahaner, *QUADPACK*,
+//!   Springer, 1983 (Gauss–Kronrod rules and global adaptivity).
+//! * M. Pharr, W. Jakob, G. Humphreys, *Physically Based Rendering*, 4th ed., 2023, §4.3.2
+//!   (albedo / reflectance definitions), §A.5 (hemisphere warps).
+
+mod albedo;
+mod checks;
+mod grid;
+mod quadrature;
+
+pub use albedo::{
+    AlbedoConfig, AlbedoEstimate, F32Brdf, HemisphericalConfig, directional_albedo,
+    directional_albedo_estimate, hemispherical_albedo,
+};
+pub use checks::{FurnaceReport, Violation, Worst, reciprocity_check, white_furnace};
+pub use grid::{
+    DirectionGrid, FibonacciHemisphere, GridDirections, GridPairs, cosine_hemisphere,
+    fibonacci_hemisphere, uniform_hemisphere,
+};
+
+#[allow(unused_imports)]
+use crate::models::Brdf;
+
+/// Polar angle of `(x, y)` for `y ≥ 0`, in `[0, π]` (an `atan2` built from `sqrt`, `sin` and
+/// `cos`, which is all the math backend offers): an octant-reduced rational guess accurate to
+/// 2e-3 rad, then Newton steps `t += sin(θ − t) = y cos t − x sin t` (error cubed each step).
+pub(crate) fn angle(y: f64, x: f64) -> f64 {
+    use crate::math::f64m;
+    use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+    let m = x.abs().max(y.abs());
+    if !(m > 0.0) || !m.is_finite() {
+        return 0.0;
+    }
+    let (x, y) = (x / m, y / m);
+    let r = f64m::sqrt(x * x + y * y);
+    let (c, s) = (x / r, y.abs() / r);
+    let (z, swap) = if s <= c.abs() {
+        (s / c.abs(), false)
+    } else {
+        (c.abs() / s, true)
+    };
+    let mut t = z * (FRAC_PI_4 + 0.273 * (1.0 - z));
+    if swap {
+        t = FRAC_PI_2 - t;
+    }
+    if c < 0.0 {
+        t = PI - t;
+    }
+    for _ in 0..3 {
+        t += s * f64m::cos(t) - c * f64m::sin(t);
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn angle_matches_atan2() {
+        let mut worst = 0.0f64;
+        for i in 0..=20_000 {
+            let a = core::f64::consts::PI * f64::from(i) / 20_000.0;
+            for r in [1e-300, 1e-3, 1.0, 7e200] {
+                let (y, x) = (r * a.sin(), r * a.cos());
+                let e = (super::angle(y, x) - y.atan2(x)).abs();
+                worst = worst.max(e);
+            }
+        }
+        assert!(worst < 1e-15, "{worst}");
+        assert_eq!(super::angle(0.0, 0.0), 0.0);
+        assert_eq!(super::angle(0.0, -2.0), core::f64::consts::PI);
+    }
+}
