@@ -142,7 +142,7 @@ fn kernel<B: Brdf<f32, N>, const N: usize>(
     assert!(wo.len() == n, "batch: wi and wo differ in length");
     assert!(
         out.iter().all(|c| c.len() == n),
-        "batch: output length differs from input"
+        "batch: output and input differ in length"
     );
     // Re-slice to `n` so the optimizer drops the per-element bounds checks.
     let (ix, iy, iz) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
