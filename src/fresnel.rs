@@ -104,10 +104,10 @@
 //! # References
 //!
 //! * A. Fresnel (1823); M. Born, E. Wolf, *Principles of Optics*, 7th ed., §1.5.
-//! * R. L. Cook, K. E. Torrance, "A Reflectance Model for Computer Graphics", ACM ToG 1(1), 1982.
+//! * R. L. Cook, K. E. Torrance, "A Reflectance Model for Computer Graphics", ACM Trans. Graph. 1(1), 1982.
 //! * C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering", CGF 13(3), 1994.
 //! * N. Hoffman, "Fresnel Equations Considered Harmful", EGSR/MAM workshop 2019; A. Kutz et al.,
-//!   "Novel aspects of the Adobe Standard Material", 2021; OpenPBR Surface specification 1.0, 2024.
+//!   "Novel aspects of the Adobe Standard Material", 2021; Open PBR Surface specification 1.0, 2024.
 //! * O. Gulbrandsen, "Artist Friendly Metallic Fresnel", JCGT 3(4), 2014.
 //! * M. Pharr, W. Jakob, G. Humphreys, *Physically Based Rendering*, 4th ed., §9.3.
 //! * Y. Gotanda, "Basic of Reflectance", tri-Ace, 2009 (the seed talk).
@@ -464,7 +464,7 @@ fn cdiv<R: Real>((a, b): (R, R), (c, d): (R, R)) -> (R, R) {
 ///   incidence (`η = 1, c = 0`) gives `0`.
 ///
 /// Reference: R. L. Cook, K. E. Torrance, "A Reflectance Model for Computer Graphics",
-/// ACM ToG 1(1), 1982, eq. in §3 (after Sparrow & Cess); J. F. Blinn, "Models of Light
+/// ACM Trans. Graph. 1(1), 1982, eq. in §3 (after Sparrow & Cess); J. F. Blinn, "Models of Light
 /// Reflection for Computer Synthesized Pictures", SIGGRAPH 1977.
 ///
 /// # Examples
@@ -615,10 +615,10 @@ const F82_W: f64 = 46656.0 / 823543.0;
 /// ```
 ///
 /// so that [`f82_tint_with_b`] passes through `tint · F_Schlick(F0, μ̄)` at `cos θ = μ̄`.
-/// Domain `f0 ∈ [0, 1]`, `tint ∈ [0, 1]` (OpenPBR's `specular_color`).
+/// Domain `f0 ∈ [0, 1]`, `tint ∈ [0, 1]` (Open PBR's `specular_color`).
 ///
 /// Reference: N. Hoffman, "Fresnel Equations Considered Harmful", 2019; A. Kutz et al.,
-/// "Novel aspects of the Adobe Standard Material", 2021 (the `b` notation); OpenPBR 1.0 §
+/// "Novel aspects of the Adobe Standard Material", 2021 (the `b` notation); Open PBR 1.0 §
 /// "Metal".
 #[inline]
 #[must_use]
@@ -635,10 +635,10 @@ pub fn f82_b<R: Real>(f0: R, tint: R) -> R {
 /// The correction `μ(1 − μ)⁶` vanishes at `μ = 0` and `μ = 1` (so `F(1) = F0`, `F(0) = 1`)
 /// and peaks at `μ̄ = 1/7`, reproducing the dip of real metals' reflectance before grazing
 /// that Schlick misses. For strong corrections the published curve goes negative near
-/// `μ ≈ 0.3–0.6` (OpenPBR issue #256); the result is clamped to `[0, 1]`.
+/// `μ ≈ 0.3–0.6` (Open PBR issue #256); the result is clamped to `[0, 1]`.
 /// Domain `f0 ∈ [0, 1]`, `cos_theta ∈ [0, 1]` (clamped), `b` finite.
 ///
-/// Reference: Hoffman 2019; Kutz et al. 2021; OpenPBR Surface 1.0.
+/// Reference: Hoffman 2019; Kutz et al. 2021; Open PBR Surface 1.0.
 #[inline]
 #[must_use]
 pub fn f82_tint_with_b<R: Real>(f0: R, b: R, cos_theta: R) -> R {
@@ -661,7 +661,7 @@ pub fn f82_tint_with_b<R: Real>(f0: R, b: R, cos_theta: R) -> R {
 /// Domain `f0, tint ∈ [0, 1]`, `cos_theta ∈ [0, 1]`.
 ///
 /// Reference: N. Hoffman, "Fresnel Equations Considered Harmful", EGSR 2019 workshop /
-/// SIGGRAPH 2019 course; OpenPBR Surface 1.0 (metal Fresnel), Kutz et al. 2021.
+/// SIGGRAPH 2019 course; Open PBR Surface 1.0 (metal Fresnel), Kutz et al. 2021.
 ///
 /// # Examples
 ///
@@ -994,7 +994,7 @@ pub struct F82Tint<R, const N: usize> {
 }
 
 impl<R: Real, const N: usize> F82Tint<R, N> {
-    /// From `f0 ∈ [0, 1]` and `tint ∈ [0, 1]` (OpenPBR's `base_color` and `specular_color`
+    /// From `f0 ∈ [0, 1]` and `tint ∈ [0, 1]` (Open PBR's `base_color` and `specular_color`
     /// of a metal) per channel, else [`Error`].
     pub fn new(f0: [R::Scalar; N], tint: [R::Scalar; N]) -> Result<Self, Error> {
         let mut b = f0;

@@ -112,7 +112,7 @@ const fn seed(name: &'static str, eta: f64, k: f64) -> Preset {
 
 /// Seed table: iron, `2.36` (as printed: real, i.e. a dielectric; see the module docs).
 pub const IRON: Preset = seed("iron", 2.36, 0.0);
-/// Seed table: iron oxide (Fe₂O₃), `3.01`.
+/// Seed table: iron oxide (`Fe₂O₃`), `3.01`.
 pub const IRON_OXIDE: Preset = seed("iron oxide", 3.01, 0.0);
 /// Seed table: gold, `0.34 + 3.2i` (seed: `0.34 − 3.2i`).
 pub const GOLD: Preset = seed("gold", 0.34, 3.2);
@@ -202,6 +202,7 @@ pub const TITANIUM_RGB: RgbPreset = RgbPreset {
     source: JC74,
 };
 /// Chromium (Cr), Johnson & Christy 1974 at 659 / 549 / 451 nm.
+#[allow(clippy::approx_constant)] // k = 3.14 at 451 nm is measured data, not π
 pub const CHROMIUM_RGB: RgbPreset = RgbPreset {
     name: "chromium",
     eta: [3.09, 3.18, 2.33],

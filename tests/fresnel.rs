@@ -311,7 +311,7 @@ fn f0_conversions() {
         assert!((f0_from_ior(eta) - dielectric(1.0, eta)).abs() < 1e-15);
         assert!((f0_from_ior(eta) - f0_from_ior(1.0 / eta)).abs() < 1e-15);
         assert!((f0_from_complex_ior(eta, 0.0) - f0_from_ior(eta)).abs() < 1e-15);
-        if eta >= 1.0 && eta < 1e3 {
+        if (1.0..1e3).contains(&eta) {
             assert!(
                 (ior_from_f0(f0_from_ior(eta)) - eta).abs() < 1e-12 * eta,
                 "{eta}"
@@ -641,7 +641,7 @@ fn lane_rows() -> Vec<[f64; 3]> {
         0.01,
         0.3,
         0.5,
-        0.7071,
+        std::f64::consts::FRAC_1_SQRT_2,
         0.99,
         1.0,
         -1.0,

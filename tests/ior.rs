@@ -121,9 +121,8 @@ fn metal_presets_are_valid_and_documented() {
         let c = Conductor::<f32, 3>::from_rgb_preset(p);
         let f = c.eval(0.5);
         assert!(f.iter().all(|x| (0.0..=1.0).contains(x)));
-        let f0 = c.eval(1.0);
-        for i in 0..3 {
-            assert!((f64::from(f0[i]) - p.f0()[i]).abs() < 1e-6);
+        for (got, want) in c.eval(1.0).into_iter().zip(p.f0()) {
+            assert!((f64::from(got) - want).abs() < 1e-6);
         }
     }
     let mut names: Vec<_> = METALS_RGB.iter().map(|p| p.name).collect();
