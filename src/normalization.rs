@@ -142,9 +142,9 @@ fn exp2_neg_half<R: Real>(s: R) -> R {
 /// `s ∈ [0, ∞)`, including `+∞` (gives `0`). `I(0) = 2π` (the solid angle of the
 /// hemisphere), `I(s) → 8π/s` for large `s`. `2 − 2^(−s/2) ∈ [1, 2)` is a subtraction of a
 /// number at most half the minuend, so it cannot cancel: the rounding error of `2^(−s/2)` is
-/// damped by `2^(−s/2)/(2 − 2^(−s/2)) ≤ 1`. The result is within a few ULP of the true value
-/// for every `s` (see `tests/normalization.rs`); `2^(−s/2)` underflowing to `0` for huge
-/// `s` is harmless.
+/// damped by `2^(−s/2)/(2 − 2^(−s/2)) ≤ 1`. Measured against a cancellation-free
+/// `expm1` formulation over `s ∈ [0, 10¹²]`: within 2 ULP on `f32` and `f64` (this function
+/// and [`tri_ace_exact`]); `2^(−s/2)` underflowing to `0` for huge `s` is harmless.
 ///
 /// # Reference
 ///
@@ -263,8 +263,9 @@ pub fn tri_ace_exact_offset<R: Real>(s: R) -> R {
 /// ```
 ///
 /// Gotanda's SIGGRAPH 2010 course notes give these constants for that model (the
-/// "max(N·L, N·V)" denominator is Neumann et al.'s geometric term); the notes do not state
-/// the fitted range, and the crate does not re-derive them. Relative to the seed's exact
+/// `max(N·L, N·V)` denominator is the geometric term of Neumann, Neumann and
+/// Szirmay-Kalos, "Compact Metallic Reflectance Models", Eurographics 1999); the notes do
+/// not state the fitted range, and the crate does not re-derive them. Relative to the seed's exact
 /// [`tri_ace_exact`] it is −46 % at `s = 0`, −10 % at `s = 4`, +0.57 % at its peak near
 /// `s ≈ 17.5`, −0.05 % at `s = 256`, −0.10 % at `s = 1024`, and tends to −0.113 % (its slope
 /// `0.0397436` is 0.113 % below the exact `1/(8π)`). At normal viewing (`V = N`, so `max(N·L, N·V) = 1`) the model's
@@ -672,9 +673,12 @@ impl<const N: usize> NormalizationTable<N> {
     pub fn new(normalization: Normalization, s_min: f64, s_max: f64) -> Result<Self, Error> {
         const { assert!(N >= 2, "a NormalizationTable needs at least two entries") };
         check_range(s_min, s_max, true)?;
-        let mut values = [0.0f32; N];
-        fill_table(normalization, s_min, s_max, &mut values)?;
+        // The table lives in f32: tabulate at the f32-rounded range so that entries, their
+        // shininess and the lookup agree exactly.
         let (s_min, s_max) = (s_min as f32, s_max as f32);
+        check_range(s_min.into(), s_max.into(), true)?;
+        let mut values = [0.0f32; N];
+        fill_table(normalization, s_min.into(), s_max.into(), &mut values)?;
         Ok(Self {
             s_min,
             s_max,

@@ -779,3 +779,39 @@ fn lobe_eval_lanes_match_scalars() {
     }
     println!("lanes BlinnPhongLobe::eval: worst {worst} ulp");
 }
+
+// ---------------------------------------------------------------------------------------
+// Floating-point accuracy of the exact factor.
+// ---------------------------------------------------------------------------------------
+
+#[test]
+fn exact_factor_is_accurate_to_a_few_ulp() {
+    // Independent formulation: 2 − 2^(−s/2) = 1 − expm1(−s·ln2/2), evaluated with std's
+    // exp_m1 (no subtraction of nearly equal numbers at any s).
+    let mut worst64 = 0;
+    let mut worst32 = 0;
+    let mut s = 1e-300f64;
+    let mut grid = vec![0.0];
+    while s < 1e12 {
+        grid.push(s);
+        s *= 1.07;
+    }
+    grid.extend((0..=4000).map(|i| i as f64 * 0.05));
+    for s in grid {
+        let d = 1.0 - (-s * std::f64::consts::LN_2 / 2.0).exp_m1();
+        let reference = (s + 2.0) / (4.0 * PI * d);
+        worst64 = worst64.max(common::ulps(tri_ace_exact(s), reference));
+        let reference_integral = 4.0 * PI * d / (s + 2.0);
+        worst64 = worst64.max(common::ulps(tri_ace_integral(s), reference_integral));
+        // f32 against the f64 reference rounded to f32 (s itself rounded first).
+        let s32 = s as f32;
+        if s32.is_finite() {
+            let d = 1.0 - (-(s32 as f64) * std::f64::consts::LN_2 / 2.0).exp_m1();
+            let r32 = ((s32 as f64 + 2.0) / (4.0 * PI * d)) as f32;
+            worst32 = worst32.max(common::ulps(tri_ace_exact(s32), r32));
+        }
+    }
+    println!("tri_ace_exact: worst {worst64} ulp (f64), {worst32} ulp (f32)");
+    assert!(worst64 <= 4, "f64: {worst64} ulp");
+    assert!(worst32 <= 4, "f32: {worst32} ulp");
+}
