@@ -86,11 +86,13 @@ pub trait SmithLambda<R: Real>: Ndf<R> {
     /// incidence where `Λ` itself diverges. The visibility terms of [`crate::masking`] are
     /// built on it: `V = 1 / (4 (cos θi cos θo + cos θo·cosΛ(wi) + cos θi·cosΛ(wo)))`.
     ///
-    /// The default body is `|w.z| · Λ(w)`; [`Ggx`] and [`Beckmann`] override it with forms that
-    /// have no `0·∞` at `cos θ = 0`.
+    /// The default body is `max(|cos θ|, 1e-15) · Λ(w)`, which has the right grazing limit for
+    /// an NDF whose `Λ` floors `cos θ` at 1e-15 as [`Ggx`] and [`Beckmann`] do (so a wrapper
+    /// that forwards only [`SmithLambda::lambda`] still gets it); those two override it with
+    /// forms that need no floor.
     #[inline(always)]
     fn cos_lambda(&self, w: Vec3<R>) -> R {
-        w.z.abs() * self.lambda(w)
+        w.z.abs().max(R::from_f64(COS_FLOOR)) * self.lambda(w)
     }
 
     /// The Smith masking function without the microfacet visibility indicator,
@@ -116,6 +118,9 @@ pub const MAX_ALPHA: f64 = 1.0;
 /// Largest Blinn-Phong / Ashikhmin-Shirley exponent accepted: `2/MIN_ALPHA² − 2`, the
 /// shininess whose lobe matches the narrowest Beckmann lobe ([`beckmann_alpha_to_shininess`]).
 pub const MAX_SHININESS: f64 = 2.0 / (MIN_ALPHA * MIN_ALPHA) - 2.0;
+
+/// Floor of `|cos θ|` inside `Λ` (so `Λ` is finite at grazing): `√(1e-30)`.
+const COS_FLOOR: f64 = 1e-15;
 
 /// A denominator floor far below anything a valid input produces, far above the `f32`
 /// subnormal range: keeps `0/0` and `x/0` out of the formulas at exactly grazing angles
@@ -396,11 +401,11 @@ fn beckmann_cos_lambda<R: Real>(c: R, sigma: R) -> R {
 const FRAC_1_SQRT_PI: f64 = core::f64::consts::FRAC_2_SQRT_PI * 0.5;
 
 impl<R: Real> SmithLambda<R> for Beckmann<R> {
-    /// `Λ = cosΛ / cos θ` ([`SmithLambda::cos_lambda`]) with `cos θ` floored at 1e-30:
+    /// `Λ = cosΛ / cos θ` ([`SmithLambda::cos_lambda`]) with `cos θ` floored at 1e-15:
     /// large but finite at grazing.
     #[inline(always)]
     fn lambda(&self, w: Vec3<R>) -> R {
-        self.cos_lambda(w) / w.z.abs().max(tiny())
+        self.cos_lambda(w) / w.z.abs().max(R::from_f64(COS_FLOOR))
     }
 
     /// `cos θ Λ = (α(w) sin θ e^(−a²)/√π − cos θ erfc(a)) / 2`, `a = cos θ/(α(w) sin θ)`;

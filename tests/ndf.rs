@@ -708,3 +708,35 @@ fn simd_lanes_match_scalar() {
         println!("  {name:<24} {w}");
     }
 }
+
+/// A wrapper that forwards only `d` and `lambda` (like a run-time NDF enum would).
+struct OnlyLambda<N>(N);
+impl<N: Ndf<f64>> Ndf<f64> for OnlyLambda<N> {
+    fn d(&self, wm: Vec3<f64>) -> f64 {
+        self.0.d(wm)
+    }
+}
+impl<N: SmithLambda<f64>> SmithLambda<f64> for OnlyLambda<N> {
+    fn lambda(&self, w: Vec3<f64>) -> f64 {
+        self.0.lambda(w)
+    }
+}
+
+#[test]
+fn default_cos_lambda_keeps_the_grazing_limit() {
+    let g = Ggx::<f64>::anisotropic(0.3, 1e-4).unwrap();
+    let b = Beckmann::<f64>::anisotropic(1.0, 0.02).unwrap();
+    for &c in &[0.0, 1e-16, 1e-9, 1e-3, 0.5, 1.0] {
+        let w = common::hemisphere(c, 0.1);
+        for (full, wrapped) in [
+            (g.cos_lambda(w), OnlyLambda(g).cos_lambda(w)),
+            (b.cos_lambda(w), OnlyLambda(b).cos_lambda(w)),
+        ] {
+            assert!(
+                (wrapped - full).abs() <= 1e-12 * full.max(1e-300),
+                "c={c}: {wrapped} vs {full}"
+            );
+        }
+        assert!((OnlyLambda(g).g1(w) - g.g1(w)).abs() < 1e-15);
+    }
+}
