@@ -51,14 +51,15 @@
 //!
 //! The talk says only that `n` depends on the shininess range and that the error is small.
 //! Under the minimax relative error ([`best_fit_offset`]), the optimum depends on the lower
-//! end `s_min` alone once `s_max ≳ 23`: `n* = 3.528` for `[0, ·]`, `2.985` for `[2, ·]`,
+//! end `s_min` alone once `s_max ≳ 23`: `n* = 3.528` for `[0, ·]`, `2.984` for `[2, ·]`,
 //! `2.218` for `[8, ·]`, `2.022` for `[16, ·]`, and **`n* = 2.040` for `s_min ≈ 14`**, where
-//! the fit's worst error is **0.143 %** (−0.143 % at `s = 14`, +0.143 % at `s ≈ 22.75`).
+//! the fit's worst error is **0.143 %** (−0.142 % at `s = 14`, +0.143 % at `s ≈ 22.75`).
 //! So 2.04 is the optimal offset for shininess `s ≥ 14`, the range where the talk's
 //! "ほとんど誤差" (almost no error) holds; below `s = 14` the error grows to −2.7 % at
-//! `s = 8` and −49 % at `s = 0`. (An unweighted least-squares fit of the offset over
-//! `[0, 221]` also gives 2.04; the slides lost the plot that fixed the range.) Use
-//! [`fit_error`] to measure any offset over your own range.
+//! `s = 8` and −49 % at `s = 0`. (A least-squares fit of the offset alone, slope fixed at
+//! `1/(8π)`, absolute error, over `[0, 221]` also gives 2.04: the mean of `n₀`; the slides
+//! lost the plot that fixed the range.) Use [`fit_error`] to measure any offset over your
+//! own range.
 //!
 //! # Precomputation
 //!

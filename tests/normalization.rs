@@ -469,6 +469,7 @@ fn the_talks_offset_is_optimal_for_shininess_from_14() {
     // Documented optima by lower end (s_max large); the upper end does not matter.
     for (a, n, err) in [
         (0.0, 3.528, 0.118),
+        (2.0, 2.984, 0.0655),
         (8.0, 2.218, 0.0101),
         (16.0, 2.022, 7.3e-4),
     ] {
@@ -814,4 +815,16 @@ fn exact_factor_is_accurate_to_a_few_ulp() {
     println!("tri_ace_exact: worst {worst64} ulp (f64), {worst32} ulp (f32)");
     assert!(worst64 <= 4, "f64: {worst64} ulp");
     assert!(worst32 <= 4, "f32: {worst32} ulp");
+}
+
+#[test]
+fn least_squares_offset_over_0_to_221_is_also_2_04() {
+    // Minimizing ∫₀^S (fit − exact)² ds over the offset alone (slope 1/(8π)) gives the
+    // mean of n₀ over [0, S]; for S = 221 that mean is 2.04 (documented alternative origin).
+    let s_max = 221.0;
+    let breaks: Vec<f64> = (0..=17)
+        .map(|k| if k == 17 { s_max } else { k as f64 * 13.0 })
+        .collect();
+    let mean = common::integrate_pieces(tri_ace_exact_offset, &breaks, 4, 16) / s_max;
+    assert!((mean - TRI_ACE_OFFSET).abs() < 1e-3, "{mean}");
 }
