@@ -411,7 +411,8 @@ pub fn phong_cosine<R: Real>(s: R) -> R {
 ///
 /// Each variant names one of the functions of this module; [`Normalization::factor`]
 /// evaluates it. The variants normalize **different integrals** (see the module table):
-/// pick the one that belongs to the BRDF you evaluate.
+/// pick the one that belongs to the BRDF you evaluate. Non-exhaustive: more normalizations
+/// may be added.
 ///
 /// # Examples
 ///
@@ -423,6 +424,7 @@ pub fn phong_cosine<R: Real>(s: R) -> R {
 /// assert!((fit.factor(64.0_f32) / n.factor(64.0_f32) - 1.0).abs() < 1e-3);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Normalization {
     /// No normalization: `c(s) = 1` (the classic, unnormalized Blinn-Phong).
     Unnormalized,
