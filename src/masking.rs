@@ -14,7 +14,7 @@
 //! | [`Kelemen`] | `V = 1 / (4 (wi·wm)(wo·wm))` | any [`Ndf`] |
 //! | [`Implicit`] | `G2 = cos θi cos θo`, `V = 1/4` | any [`Ndf`] |
 //!
-//! `χ⁺` is 1 when `wi·wm > 0` and `wo·wm > 0`, else 0 (Heitz 2014, eq. 43): with `wm` the
+//! `χ⁺` is 1 when `wi·wm > 0` and `wo·wm > 0`, else 0 (Heitz 2014, the microfacet visibility indicator): with `wm` the
 //! half vector of two upper-hemisphere directions it is 1 except for the degenerate
 //! `wm = 0` (`wi = −wo`), where every term here returns 0 instead of NaN. The approximations
 //! ([`SchlickGgx`], [`HammonApprox`], [`Implicit`]) do not look at `wm`.
@@ -125,7 +125,7 @@ fn cos_clamped<R: Real>(w: Vec3<R>) -> R {
 /// (GGX isotropic: `V = 0.5/(cos θo √(cos²θi(1 − α²) + α²) + cos θi √(cos²θo(1 − α²) + α²))`,
 /// the form in Filament's docs). Works with any [`SmithLambda`] NDF, anisotropic included.
 ///
-/// Reference: E. Heitz, JCGT 2014, eq. 99 (height-correlated form), §5.
+/// Reference: E. Heitz, JCGT 2014 (height-correlated masking and shadowing).
 ///
 /// # Examples
 ///
@@ -171,7 +171,7 @@ impl<R: Real, D: SmithLambda<R>> Masking<R, D> for SmithHeightCorrelated {
 /// vs `1/3`; see the [module](self) table); it is what Walter et al. 2007 and Mitsuba use.
 ///
 /// Reference: B. Smith, "Geometrical shadowing of a random rough surface", IEEE TAP 1967;
-/// B. Walter et al., EGSR 2007, eq. 23; E. Heitz, JCGT 2014, eq. 98.
+/// B. Walter et al., EGSR 2007, §5; E. Heitz, JCGT 2014 (separable masking and shadowing).
 ///
 /// # Examples
 ///
@@ -281,14 +281,14 @@ impl<R: Real> Masking<R, Beckmann<R>> for SmithSeparableWalter {
 ///
 /// Blinn 1977 and Cook & Torrance 1982 (and the seed slide) write both fractions over
 /// `E·H` (`wo·wm`): for the half vector `wi·wm = wo·wm`, so the two agree; with a general
-/// `wm` the per-direction form above (Heitz 2014, eq. 55) is the one that is symmetric in
+/// `wm` the per-direction form above (Heitz 2014, V-cavity masking function) is the one that is symmetric in
 /// `wi ↔ wo`. The seed's `G = min(1, 2(N·H)(N·E)/(E·H), 2(N·H)(N·L)/(E·H))` is correct.
 /// The term ignores the NDF. Its `G1(v, m) = min(1, 2 cos θm cos θv/(v·m))` conserves the
 /// projected area like a Smith `G1` (`∫ G1 max(0, v·m) D dωm = cos θv`, checked by quadrature
-/// for GGX to 5e-6 in `tests/masking.rs`, Heitz 2014 §4.2).
+/// for GGX to 5e-6 in `tests/masking.rs`, as Heitz 2014 notes for the V-cavity model).
 ///
 /// References: J. F. Blinn, SIGGRAPH 1977 (`Ge`, `Gs`); R. L. Cook, K. E. Torrance, ACM TOG
-/// 1982, eq. 7; E. Heitz, JCGT 2014, §4.2.
+/// 1982 (geometrical attenuation factor); E. Heitz, JCGT 2014 (the V-cavity model).
 ///
 /// # Examples
 ///
@@ -425,7 +425,7 @@ impl<R: Real, D: ProjectedAlpha<R>> Masking<R, D> for HammonApprox {
 /// Cheap (no NDF, no square root) but far from Smith at grazing (module table).
 /// Filament uses it for the clear-coat layer (`V_Kelemen`).
 ///
-/// Reference: C. Kelemen, L. Szirmay-Kalos, Eurographics 2001 short papers, §3.
+/// Reference: C. Kelemen, L. Szirmay-Kalos, Eurographics 2001 short papers.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Kelemen;
 

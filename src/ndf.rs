@@ -96,7 +96,7 @@ pub trait SmithLambda<R: Real>: Ndf<R> {
     }
 
     /// The Smith masking function without the microfacet visibility indicator,
-    /// `G1(w) = 1 / (1 + Λ(w))` (Heitz 2014, eq. 43), in `[0, 1]`.
+    /// `G1(w) = 1 / (1 + Λ(w))` (Heitz 2014, Smith masking function), in `[0, 1]`.
     #[inline(always)]
     fn g1(&self, w: Vec3<R>) -> R {
         (R::one() + self.lambda(w)).recip()
@@ -170,8 +170,8 @@ const SHININESS_DOMAIN: &str = "[0, 199999998]";
 /// roughness along the tangent (x), `alpha_y` along the bitangent (y).
 ///
 /// References: T. S. Trowbridge, K. P. Reitz, JOSA 1975; B. Walter et al., "Microfacet models
-/// for refraction through rough surfaces", EGSR 2007 (eq. 33, 72: "GGX"); E. Heitz, JCGT 2014
-/// (eq. 85–86, anisotropic Λ).
+/// for refraction through rough surfaces", EGSR 2007 (§5, "GGX"); E. Heitz, JCGT 2014
+/// (anisotropic Λ through the projected roughness).
 ///
 /// # Examples
 ///
@@ -268,7 +268,7 @@ macro_rules! alpha_ndf_ctors {
             }
 
             /// `x² αx² + y² αy²` = `(α(w) sin θ)²`, the squared projected roughness times
-            /// `sin² θ` (Heitz 2014, eq. 80).
+            /// `sin² θ` (Heitz 2014, anisotropic Λ).
             #[inline(always)]
             fn stretched_sin2(&self, w: Vec3<R>) -> R {
                 w.x * w.x * self.alpha_x2 + w.y * w.y * self.alpha_y2
@@ -283,7 +283,7 @@ macro_rules! alpha_ndf_ctors {
         }
 
         impl<R: Real> ProjectedAlpha<R> for $t<R> {
-            /// `α(w) = √((x² αx² + y² αy²)/(x² + y²))` (Heitz 2014, eq. 80); at normal
+            /// `α(w) = √((x² αx² + y² αy²)/(x² + y²))` (Heitz 2014, anisotropic Λ); at normal
             /// incidence, where it is undefined and irrelevant, `√((αx² + αy²)/2)`.
             #[inline(always)]
             fn projected_alpha(&self, w: Vec3<R>) -> R {
@@ -351,8 +351,8 @@ impl<R: Real> SmithLambda<R> for Ggx<R> {
 ///
 /// Domain: `alpha_x, alpha_y ∈ [1e-4, 1]` (see the [module docs](self)).
 ///
-/// References: P. Beckmann, A. Spizzichino 1963; B. Walter et al., EGSR 2007 (eq. 25, 27);
-/// E. Heitz, JCGT 2014 (eq. 83–84, anisotropic via the projected roughness).
+/// References: P. Beckmann, A. Spizzichino 1963; B. Walter et al., EGSR 2007 (§5, Beckmann);
+/// E. Heitz, JCGT 2014 (Beckmann Λ; anisotropic via the projected roughness).
 ///
 /// # Examples
 ///
@@ -541,7 +541,7 @@ pub fn erf<R: Real>(x: R) -> R {
 /// `alpha = √(2/(s + 2))` ([`shininess_to_beckmann_alpha`]), which a caller can do with
 /// [`Beckmann`].
 ///
-/// References: J. F. Blinn, SIGGRAPH 1977 (`D1 = cosᶜ`); B. Walter et al., EGSR 2007 (eq. 30).
+/// References: J. F. Blinn, SIGGRAPH 1977 (`D1 = cosᶜ`); B. Walter et al., EGSR 2007 (§5, Phong).
 ///
 /// # Examples
 ///
@@ -622,7 +622,7 @@ impl<R: Real> Ndf<R> for BlinnPhong<R> {
 /// bitangent (y). At normal incidence `e` is undefined and irrelevant (`1ᵉ = 1`).
 ///
 /// Reference: M. Ashikhmin, P. Shirley, "An anisotropic Phong BRDF model", Journal of
-/// Graphics Tools 5(2), 2000 (eq. 4 and the half-vector density of §3).
+/// Graphics Tools 5(2), 2000 (the specular term and its half-vector density).
 ///
 /// # Examples
 ///
@@ -741,7 +741,7 @@ impl<R: Real> Ndf<R> for AshikhminShirley<R> {
 /// So the pairing is close for glossy lobes (`s ≳ 50`) and poor for rough ones.
 /// Domain: `alpha ∈ (0, 1]`.
 ///
-/// Reference: B. Walter et al., EGSR 2007, §5.2 (eq. 30 and the text after it);
+/// Reference: B. Walter et al., EGSR 2007, §5 (the Phong distribution and its α conversion);
 /// B. Karis, "Specular BRDF reference" (blog), 2013.
 #[inline]
 #[must_use]
@@ -752,7 +752,7 @@ pub fn beckmann_alpha_to_shininess<R: Real>(alpha: R) -> R {
 /// Beckmann `alpha` matching a Blinn-Phong shininess: `α = √(2/(s + 2))`, the inverse of
 /// [`beckmann_alpha_to_shininess`] (same error table). Domain: `s ≥ 0`.
 ///
-/// Reference: B. Walter et al., EGSR 2007, §5.2.
+/// Reference: B. Walter et al., EGSR 2007, §5.
 #[inline]
 #[must_use]
 pub fn shininess_to_beckmann_alpha<R: Real>(shininess: R) -> R {
@@ -794,7 +794,7 @@ pub fn alpha_to_roughness<R: Real>(alpha: R) -> R {
 /// scale `α_GGX = k α_B`, `k ≈ 0.87`, only brings it to 0.360 (`tests/ndf.rs`). No `α`
 /// makes the two shapes match; the identity is kept for its exact peak.
 ///
-/// Reference: B. Walter et al., EGSR 2007, §5.2.
+/// Reference: B. Walter et al., EGSR 2007, §5.
 #[inline]
 #[must_use]
 pub fn beckmann_alpha_to_ggx_alpha<R: Real>(alpha: R) -> R {

@@ -242,7 +242,7 @@ fn weak_white_furnace_beckmann() {
 #[test]
 fn v_cavity_g1_against_the_weak_white_furnace() {
     // The V-cavity G1(v, m) = min(1, 2 cos θm cos θv / (v·m)) is not the Smith G1, yet it
-    // conserves the projected area too (Heitz 2014, §4.2): check it for a GGX lobe.
+    // conserves the projected area too (Heitz 2014, V-cavity model): check it for a GGX lobe.
     let g = Ggx::<f64>::new(0.5).unwrap();
     let mut worst: f64 = 0.0;
     for v in furnace_directions() {

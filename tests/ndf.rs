@@ -658,12 +658,12 @@ fn simd_lanes_match_scalar() {
     ));
     report.push((
         "blinn-phong d",
-        common::assert_lanes_match!("blinn-phong d", ulp = 64, abs = 1e-30, &shin,
+        common::assert_lanes_match!("blinn-phong d", ulp = 32, abs = 1e-30, &shin,
         fn(x, y, z, s, t) { BlinnPhong::<R>::from_lanes(s).unwrap().d(Vec3::new(x, y, z)) }),
     ));
-    report.push(("ashikhmin-shirley d", common::assert_lanes_match!("ashikhmin-shirley d", ulp = 64, abs = 1e-30, &shin,
+    report.push(("ashikhmin-shirley d", common::assert_lanes_match!("ashikhmin-shirley d", ulp = 32, abs = 1e-30, &shin,
         fn(x, y, z, nu, nv) { AshikhminShirley::<R>::from_lanes(nu, nv).unwrap().d(Vec3::new(x, y, z)) })));
-    report.push(("ashikhmin-shirley pdf", common::assert_lanes_match!("ashikhmin-shirley pdf", ulp = 64, abs = 1e-30, &shin,
+    report.push(("ashikhmin-shirley pdf", common::assert_lanes_match!("ashikhmin-shirley pdf", ulp = 32, abs = 1e-30, &shin,
         fn(x, y, z, nu, nv) { AshikhminShirley::<R>::from_lanes(nu, nv).unwrap().half_vector_pdf(Vec3::new(x, y, z)) })));
 
     // Conversions and Blinn 1977 forms.
@@ -681,7 +681,7 @@ fn simd_lanes_match_scalar() {
         })));
     report.push((
         "blinn1977 d1",
-        common::assert_lanes_match!("blinn1977 d1", ulp = 64, abs = 1e-30, &scalars,
+        common::assert_lanes_match!("blinn1977 d1", ulp = 32, abs = 1e-30, &scalars,
         fn(c, p) { ndf::blinn1977_d1(c, p) }),
     ));
     report.push((
