@@ -14,7 +14,7 @@ use core::f64::consts::{FRAC_PI_4, PI};
 /// error of the default configuration is far below `tolerance` (see the module docs).
 ///
 /// Cost is at most `max_panels_theta · 15 · max_panels_phi · 15` BRDF evaluations
-/// (≈ 1.7 million at the limits); typical calls use 2·10³–4·10⁴.
+/// (≈ 3.7 million at the limits); typical calls use 4.5·10³–6·10⁴.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AlbedoConfig {
     /// Target absolute error of each channel's albedo (default `1e-6`).
@@ -35,7 +35,8 @@ impl AlbedoConfig {
         max_panels_phi: 32,
     };
 
-    /// A cheaper setting for property tests: `tolerance = 1e-4`, 48 × 24 panels.
+    /// A cheaper setting for property tests: `tolerance = 1e-4`, 48 × 24 panels (measured
+    /// error ≤ 2e-6 on Lambert, GGX and sharp cosine lobes; 10–60 % fewer evaluations).
     pub const FAST: Self = Self {
         tolerance: 1e-4,
         max_panels_theta: 48,
@@ -155,14 +156,17 @@ where
 /// them (width ≳ 0.01 rad), then refined adaptively.
 ///
 /// **Accuracy.** The error estimate `max_c |K15 − G7|` (plus propagated inner errors) is
-/// driven below `cfg.tolerance`. Measured against closed forms (tests/analysis.rs): Lambert
-/// at `cos θo` down to 1e-7, normalized Phong and Blinn-Phong lobes up to exponent 10⁴, GGX
-/// and Beckmann with `α` down to 10⁻³ are within 1e-9 … 1e-7 with the default tolerance
-/// 1e-6. Results are deterministic.
+/// driven below `cfg.tolerance`. Measured against closed forms (tests/analysis.rs) with the
+/// default tolerance 1e-6: Lambert at `cos θo` down to 1e-7 within 1.5e-9; normalized cosine
+/// lobes up to exponent 10⁴ about the normal, mirror or retro direction at `cos θo` down to
+/// 1e-4 within 1.1e-6; Blinn-Phong up to s = 10⁴ and GGX/Beckmann down to α = 10⁻³ at
+/// normal incidence within 2e-11. A jump discontinuity inside the hemisphere is integrated
+/// to about 1e-3 only (see the [module docs](super)). Results are deterministic.
 ///
-/// **Cost.** Typically 2·10³ (Lambert) to 4·10⁴ (sharp or grazing lobes) BRDF
-/// evaluations; bounded by `cfg.max_panels_theta · cfg.max_panels_phi · 225`. When the
-/// budget runs out, the returned `error` exceeds `tolerance`; check it.
+/// **Cost.** 4.5·10³ (Lambert) to 6·10⁴ (sharp lobes off the mirror direction) BRDF
+/// evaluations, 0.1–4.5 ms in release for a cheap BRDF; bounded by
+/// `cfg.max_panels_theta · cfg.max_panels_phi · 225`. When the budget runs out, the returned
+/// `error` exceeds `tolerance`; check it.
 ///
 /// References: B. Walter, S. R. Marschner, H. Li, K. E. Torrance, "Microfacet Models for
 /// Refraction through Rough Surfaces", EGSR 2007 (half-vector Jacobian); M. Pharr, W. Jakob,
@@ -189,7 +193,7 @@ where
         return Quad::ZERO;
     }
     let wo = wo.scale(1.0 / len);
-    if !(wo.z > 0.0) {
+    if wo.z.is_nan() || wo.z <= 0.0 {
         return Quad::ZERO;
     }
     let cos_o = wo.z;
@@ -249,7 +253,7 @@ where
             } else {
                 0.0
             };
-            if !(delta > 0.0) || !(c_m > 0.0) {
+            if delta.is_nan() || delta <= 0.0 || c_m <= 0.0 {
                 return Quad::ZERO;
             }
             adaptive(

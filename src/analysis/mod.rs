@@ -24,20 +24,30 @@
 //! `no_std` without `alloc`.
 //!
 //! Validated in `tests/analysis.rs` against closed forms, with [`AlbedoConfig::DEFAULT`]
-//! (tolerance 1e-6):
+//! (tolerance 1e-6); worst errors measured:
 //!
 //! | Case | `cos θo` | Worst error |
 //! |---|---|---|
-//! | Lambert | 1 … 1e-7 | ≤ 1e-12 |
-//! | Normalized cosine lobe about `n`, `(n+2)/(2π) cosⁿθi`, n ≤ 10⁴ | 1 … 1e-4 | ≤ 1e-8 |
-//! | Phong lobes about the mirror and retro directions, n ≤ 10⁴ (independent 1D reference) | 1 … 1e-4 | ≤ 1e-8 |
-//! | Blinn-Phong `(n·h)ˢ`, s ≤ 10⁴ (closed form) | 1 | ≤ 1e-9 |
-//! | GGX / Beckmann `D/(4 cos θi cos θo)`, α ≥ 10⁻³ (closed form) | 1 | ≤ 1e-9 |
+//! | Lambert | 1 … 1e-7 | 1.5e-9 |
+//! | Normalized cosine lobe about `n`, `(n+2)/(2π) cosⁿθi`, n ≤ 10⁴ | 1 … 1e-4 | 5e-8 |
+//! | Phong lobes about the mirror and retro directions, n ≤ 10⁴ (independent 1D reference) | 1 … 1e-4 | 1.1e-6 (kink of `max(0, R·wi)` at n = 1) |
+//! | The same lobe about a fixed direction off the plane of incidence, n ≤ 10³ | 1 … 1e-4 | 3.4e-9 |
+//! | Blinn-Phong `(n·h)ˢ`, s ≤ 10⁴ (closed form) | 1 | 5e-13 |
+//! | GGX / Beckmann `D/(4 cos θi cos θo)`, α ≥ 10⁻³ (closed form) | 1 | 2.1e-11 |
+//! | A jump discontinuity (`f = 2/π` on `wi.x > 0`) | 1 … 1e-4 | 3.3e-4 |
 //!
+//! So continuous BRDFs meet 1e-4 with two orders of margin; a BRDF with a jump (a hard
+//! cut-off inside the hemisphere) is within about 1e-3, because where the jump curve is
+//! tangent to a `θm` line the inner integrals see slivers thinner than their node spacing.
 //! A lobe is resolved at any sharpness when it is centred on the mirror direction, the
-//! normal or the retro-reflection direction, or lies in the plane of incidence; lobes
-//! elsewhere are found when they are wider than about 0.01 rad, then refined adaptively.
-//! Cost: 10³–10⁵ BRDF evaluations per albedo (≈ 0.1–5 ms for a cheap BRDF in release).
+//! normal or the retro-reflection direction; lobes elsewhere are found when they are wider
+//! than about 0.01 rad, then refined adaptively.
+//!
+//! Cost (release build, a cheap analytic BRDF): 4.5·10³–6·10⁴ evaluations, 0.1–4.5 ms per
+//! albedo with `DEFAULT`; 4.5·10³–4.6·10⁴ evaluations with [`AlbedoConfig::FAST`]
+//! (tolerance 1e-4; measured error ≤ 2e-6 in the timing runs: Lambert, GGX with α = 0.3 and
+//! 10⁻³, a `cos¹⁰⁰⁰⁰` lobe, `cos θo` from 1 to 1e-4); [`hemispherical_albedo`] of
+//! an isotropic BRDF ≈ 1.3·10⁵ evaluations (3 ms).
 //!
 //! ## References
 //!
@@ -73,7 +83,7 @@ pub(crate) fn angle(y: f64, x: f64) -> f64 {
     use crate::math::f64m;
     use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
     let m = x.abs().max(y.abs());
-    if !(m > 0.0) || !m.is_finite() {
+    if !(m > 0.0 && m.is_finite()) {
         return 0.0;
     }
     let (x, y) = (x / m, y / m);

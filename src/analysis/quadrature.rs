@@ -11,6 +11,7 @@
 
 /// Abscissae of the 15-point Kronrod rule on `[−1, 1]` (non-negative half, descending).
 /// Odd indices (1, 3, 5, 7) are the nodes of the 7-point Gauss–Legendre rule.
+#[allow(clippy::excessive_precision)] // published digits, kept verbatim for checking
 pub(crate) const XGK: [f64; 8] = [
     0.991_455_371_120_812_639_206_854_697_526_329,
     0.949_107_912_342_758_524_526_189_684_047_851,
@@ -23,6 +24,7 @@ pub(crate) const XGK: [f64; 8] = [
 ];
 
 /// Weights of the 15-point Kronrod rule, matching [`XGK`].
+#[allow(clippy::excessive_precision)]
 pub(crate) const WGK: [f64; 8] = [
     0.022_935_322_010_529_224_963_732_008_058_970,
     0.063_092_092_629_978_553_290_700_663_189_204,
@@ -35,6 +37,7 @@ pub(crate) const WGK: [f64; 8] = [
 ];
 
 /// Weights of the 7-point Gauss–Legendre rule at `XGK[1]`, `XGK[3]`, `XGK[5]`, `XGK[7]`.
+#[allow(clippy::excessive_precision)]
 pub(crate) const WG: [f64; 4] = [
     0.129_484_966_168_869_693_270_611_432_679_082,
     0.279_705_391_489_276_667_901_467_771_423_780,
@@ -200,8 +203,8 @@ pub(crate) fn adaptive<const N: usize>(
     let mut value = [0.0; N];
     let mut error = 0.0;
     for p in &panels[..n] {
-        for ch in 0..N {
-            value[ch] += p.value[ch];
+        for (v, pv) in value.iter_mut().zip(p.value) {
+            *v += pv;
         }
         error += p.error;
     }
