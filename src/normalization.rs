@@ -106,6 +106,17 @@ fn exp2_neg_half<R: Real>(s: R) -> R {
     (s * R::from_f64(-0.5 * core::f64::consts::LN_2)).exp()
 }
 
+/// `max(2^(−s/2), ≈2^(−64))`: for formulas where `2^(−s/2)` is only added to or subtracted
+/// from a number `≥ 1` that it cannot change below `2^(−54)` (`2 − q`, `s + q` for
+/// `s ≥ 128`), so the results are identical to [`exp2_neg_half`]'s. Keeping the `exp`
+/// argument above `−64·ln 2` avoids the underflow and subnormal paths of the SIMD `exp`
+/// kernels, which otherwise cost a branch per register for large `s`. Not for `s·q`.
+#[inline(always)]
+fn exp2_neg_half_floored<R: Real>(s: R) -> R {
+    let x = s * R::from_f64(-0.5 * core::f64::consts::LN_2);
+    x.max(R::from_f64(-64.0 * core::f64::consts::LN_2)).exp()
+}
+
 /// The hemisphere integral of the seed talk, `∫_Ω (N·H)^s dω` with the light at normal
 /// incidence, in closed form.
 ///
@@ -165,7 +176,7 @@ fn exp2_neg_half<R: Real>(s: R) -> R {
 #[must_use]
 pub fn tri_ace_integral<R: Real>(s: R) -> R {
     let two = R::from_f64(2.0);
-    R::from_f64(FOUR_PI) * (two - exp2_neg_half(s)) / (s + two)
+    R::from_f64(FOUR_PI) * (two - exp2_neg_half_floored(s)) / (s + two)
 }
 
 /// The seed talk's exact normalization factor, the reciprocal of [`tri_ace_integral`].
@@ -197,7 +208,7 @@ pub fn tri_ace_integral<R: Real>(s: R) -> R {
 #[must_use]
 pub fn tri_ace_exact<R: Real>(s: R) -> R {
     let two = R::from_f64(2.0);
-    (s + two) / (R::from_f64(FOUR_PI) * (two - exp2_neg_half(s)))
+    (s + two) / (R::from_f64(FOUR_PI) * (two - exp2_neg_half_floored(s)))
 }
 
 /// The seed talk's linear approximation of [`tri_ace_exact`]: `(s + offset)/(8π)`.
@@ -339,7 +350,7 @@ pub fn blinn_phong_ndf<R: Real>(s: R) -> R {
 #[inline]
 #[must_use]
 pub fn blinn_phong_cosine_exact<R: Real>(s: R) -> R {
-    let q = exp2_neg_half(s);
+    let q = exp2_neg_half_floored(s);
     let ratio = (s + R::from_f64(4.0)) / (s + q);
     (s + R::from_f64(2.0)) * ratio * R::from_f64(1.0 / EIGHT_PI)
 }
