@@ -160,7 +160,8 @@ where
 /// default tolerance 1e-6: Lambert at `cos θo` down to 1e-7 within 1.5e-9; normalized cosine
 /// lobes up to exponent 10⁴ about the normal, mirror or retro direction at `cos θo` down to
 /// 1e-4 within 1.1e-6; Blinn-Phong up to s = 10⁴ and GGX/Beckmann down to α = 10⁻³ at
-/// normal incidence within 2e-11. A jump discontinuity inside the hemisphere is integrated
+/// normal incidence within 2e-11, and GGX/Beckmann with α = 10⁻³ at `cos θo` down to 1e-4
+/// within 1.5e-7. A jump discontinuity inside the hemisphere is integrated
 /// to about 1e-3 only (see the [module docs](super)). Results are deterministic.
 ///
 /// **Cost.** 4.5·10³ (Lambert) to 6·10⁴ (sharp lobes off the mirror direction) BRDF
