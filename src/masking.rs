@@ -387,6 +387,23 @@ impl<R: Real, D: ProjectedAlpha<R>> Masking<R, D> for SchlickGgx {
 /// 0.09 at `α = 0.5`, 0.21 at `α = 0.05` near grazing (module table). Domain: `alpha ≤ 1`.
 ///
 /// References: E. Hammon Jr., GDC 2017; Filament documentation, §4.4.2 "Geometric shadowing".
+///
+/// # Examples
+///
+/// ```
+/// use brdf::{Vec3, vec3::half_vector, ndf::Ggx};
+/// use brdf::masking::{HammonApprox, Masking, SmithHeightCorrelated};
+///
+/// let (wi, wo) = (Vec3::new(0.8, 0.0, 0.6), Vec3::new(0.0, -0.28, 0.96));
+/// let wm = half_vector(wi, wo);
+/// // Exact at α = 1, approximate below.
+/// let rough = Ggx::<f64>::new(1.0).unwrap();
+/// let exact = SmithHeightCorrelated.visibility(&rough, wi, wo, wm);
+/// assert!((HammonApprox.visibility(&rough, wi, wo, wm) - exact).abs() < 1e-15);
+/// let smooth = Ggx::<f64>::new(0.2).unwrap();
+/// let exact = SmithHeightCorrelated.visibility(&smooth, wi, wo, wm);
+/// assert!((HammonApprox.visibility(&smooth, wi, wo, wm) / exact - 1.0).abs() < 0.05);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct HammonApprox;
 
