@@ -1,0 +1,238 @@
+//! Code shared by the examples: display encoding (tone mapping, sRGB), SVG rasterization
+//! with an embedded font, PNG output and command-line parsing.
+//!
+//! Included by each example with `#[path = "support/mod.rs"] mod support;`.
+
+// Each example uses a different subset of these helpers.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
+
+use resvg::{tiny_skia, usvg};
+
+pub mod render;
+
+// ---------------------------------------------------------------------------------------------
+// Display encoding
+// ---------------------------------------------------------------------------------------------
+
+/// The ACES filmic curve as fitted by K. Narkowicz ("ACES Filmic Tone Mapping Curve", blog,
+/// 2016), applied per channel to linear radiance already multiplied by the exposure:
+///
+/// ```text
+/// t(x) = x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14),  clamped to [0, 1]
+/// ```
+///
+/// `t(0) = 0`, `t` is monotonic on `[0, ∞)` and reaches 1 at `x ≈ 7.24`.
+#[must_use]
+pub fn aces_fitted(x: f32) -> f32 {
+    let x = x.max(0.0);
+    (x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14)).clamp(0.0, 1.0)
+}
+
+/// The exact piecewise sRGB opto-electronic transfer function (IEC 61966-2-1:1999):
+///
+/// ```text
+/// V = 12.92 L                     L ≤ 0.003 130 8
+/// V = 1.055 L^(1/2.4) − 0.055     otherwise
+/// ```
+#[must_use]
+pub fn srgb_oetf(l: f32) -> f32 {
+    let l = l.clamp(0.0, 1.0);
+    if l <= 0.003_130_8 {
+        12.92 * l
+    } else {
+        1.055 * l.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// How linear radiance becomes an 8-bit sRGB pixel: `exposure`, then [`aces_fitted`] per
+/// channel, then [`srgb_oetf`], then rounding to 8 bits.
+#[derive(Clone, Copy, Debug)]
+pub struct Display {
+    /// Multiplier applied to linear radiance before the tone curve.
+    pub exposure: f32,
+}
+
+impl Display {
+    /// The 8-bit sRGB code of linear radiance `rgb`.
+    #[must_use]
+    pub fn encode(&self, rgb: [f32; 3]) -> [u8; 3] {
+        rgb.map(|c| {
+            let v = srgb_oetf(aces_fitted(c * self.exposure));
+            (v * 255.0 + 0.5).clamp(0.0, 255.0) as u8
+        })
+    }
+
+    /// The same, as a CSS colour for SVG labels.
+    #[must_use]
+    pub fn css(&self, rgb: [f32; 3]) -> String {
+        let [r, g, b] = self.encode(rgb);
+        format!("#{r:02x}{g:02x}{b:02x}")
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// SVG rasterization with an embedded font
+// ---------------------------------------------------------------------------------------------
+
+/// A font database holding DejaVu Sans (regular and bold, embedded by the `dejavu` crate),
+/// registered as the generic `sans-serif`, `serif` and `monospace` families: the examples
+/// need no system fonts and no fontconfig.
+pub fn fonts() -> Arc<usvg::fontdb::Database> {
+    static DB: OnceLock<Arc<usvg::fontdb::Database>> = OnceLock::new();
+    DB.get_or_init(|| {
+        let mut db = usvg::fontdb::Database::new();
+        db.load_font_data(dejavu::sans::regular().to_vec());
+        db.load_font_data(dejavu::sans::bold().to_vec());
+        db.load_font_data(dejavu::sans::oblique().to_vec());
+        db.set_sans_serif_family("DejaVu Sans");
+        db.set_serif_family("DejaVu Sans");
+        db.set_monospace_family("DejaVu Sans");
+        Arc::new(db)
+    })
+    .clone()
+}
+
+/// Parses an SVG document with the embedded fonts.
+///
+/// # Panics
+/// If the SVG does not parse (a bug in the example that wrote it).
+#[must_use]
+pub fn parse_svg(svg: &str) -> usvg::Tree {
+    let opt = usvg::Options {
+        font_family: "DejaVu Sans".to_owned(),
+        fontdb: fonts(),
+        ..usvg::Options::default()
+    };
+    usvg::Tree::from_str(svg, &opt).unwrap_or_else(|e| panic!("example wrote an invalid SVG: {e}"))
+}
+
+/// Rasterizes an SVG document at `scale` (1 = its own pixel size) on a white background.
+#[must_use]
+pub fn rasterize(svg: &str, scale: f32) -> tiny_skia::Pixmap {
+    let tree = parse_svg(svg);
+    let size = tree.size();
+    let w = (size.width() * scale).ceil() as u32;
+    let h = (size.height() * scale).ceil() as u32;
+    let mut pixmap = tiny_skia::Pixmap::new(w, h).expect("non-empty plot");
+    pixmap.fill(tiny_skia::Color::WHITE);
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(scale, scale),
+        &mut pixmap.as_mut(),
+    );
+    pixmap
+}
+
+/// Draws an SVG document (e.g. text labels on a transparent background) over `pixmap`.
+pub fn overlay(pixmap: &mut tiny_skia::Pixmap, svg: &str) {
+    let tree = parse_svg(svg);
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::identity(),
+        &mut pixmap.as_mut(),
+    );
+}
+
+/// Escapes text for an SVG `<text>` element.
+#[must_use]
+pub fn xml_escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// Writes `pixmap` as PNG to `path`, creating the parent folder, and returns the path.
+///
+/// # Panics
+/// If the file cannot be written (the example reports it and stops).
+pub fn save_png(pixmap: &tiny_skia::Pixmap, path: &Path) -> PathBuf {
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent)
+            .unwrap_or_else(|e| panic!("cannot create {}: {e}", parent.display()));
+    }
+    pixmap
+        .save_png(path)
+        .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
+    path.to_path_buf()
+}
+
+// ---------------------------------------------------------------------------------------------
+// Command line
+// ---------------------------------------------------------------------------------------------
+
+/// The output folder: `--out DIR` if given, else `target/brdf-images/` of this workspace
+/// (`CARGO_TARGET_DIR` is honoured).
+#[must_use]
+pub fn default_out_dir() -> PathBuf {
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("target"));
+    target.join("brdf-images")
+}
+
+/// Parsed `--flag value` pairs and bare flags.
+#[derive(Debug, Default)]
+pub struct Args {
+    /// `--name value` pairs in order.
+    pub values: Vec<(String, String)>,
+    /// Bare `--name` flags.
+    pub flags: Vec<String>,
+}
+
+impl Args {
+    /// Parses the process arguments. `value_flags` take a value; `bool_flags` do not.
+    /// Unknown arguments print `usage` and exit with status 2.
+    pub fn parse(value_flags: &[&str], bool_flags: &[&str], usage: &str) -> Self {
+        let mut args = Args::default();
+        let mut it = std::env::args().skip(1);
+        while let Some(a) = it.next() {
+            if a == "-h" || a == "--help" {
+                println!("{usage}");
+                std::process::exit(0);
+            } else if value_flags.contains(&a.as_str()) {
+                match it.next() {
+                    Some(v) => args.values.push((a, v)),
+                    None => {
+                        eprintln!("error: {a} needs a value\n\n{usage}");
+                        std::process::exit(2);
+                    }
+                }
+            } else if bool_flags.contains(&a.as_str()) {
+                args.flags.push(a);
+            } else {
+                eprintln!("error: unexpected argument `{a}`\n\n{usage}");
+                std::process::exit(2);
+            }
+        }
+        args
+    }
+
+    /// The last value of `--name`.
+    #[must_use]
+    pub fn value(&self, name: &str) -> Option<&str> {
+        self.values
+            .iter()
+            .rev()
+            .find(|(k, _)| k == name)
+            .map(|(_, v)| v.as_str())
+    }
+
+    /// Every value of `--name`, in order.
+    #[must_use]
+    pub fn all(&self, name: &str) -> Vec<&str> {
+        self.values
+            .iter()
+            .filter(|(k, _)| k == name)
+            .map(|(_, v)| v.as_str())
+            .collect()
+    }
+
+    /// Whether `--name` was given.
+    #[must_use]
+    pub fn flag(&self, name: &str) -> bool {
+        self.flags.iter().any(|f| f == name)
+    }
+}
