@@ -1,0 +1,437 @@
+//! Blinn-Phong as games write it, and the normalized Blinn-Phong of the seed talk
+//! (Gotanda 2009) and of tri-Ace's 2010 model.
+//!
+//! # From the talk's "Out" to a BRDF
+//!
+//! The talk writes shading results as `Out`, the radiance leaving towards the eye for a
+//! light of unit intensity: `Out = f · cos θi` in this crate's terms (`cos θi = N·L`). So
+//! every `Out` formula is turned into a BRDF by dividing it by `N·L`:
+//!
+//! * a term written `X · (N·L)` (the diffuse terms) becomes `X`;
+//! * a term written without `N·L` (the talk's specular terms, where "G is omitted so
+//!   (N·L)/(N·E) is not considered") becomes `X / (N·L)`.
+//!
+//! The talk's normalization `∫ (N·H)^s dω = 4π(2 − 2^(−s/2))/(s + 2)` is an integral of
+//! `Out` over the outgoing hemisphere **without** `cos θo`, for light at normal incidence.
+//! As a BRDF the seed's specular is therefore `c(s) F (N·H)^s / (N·L)`: the division by `N·L`
+//! alone makes it **not reciprocal**, and its light-side albedo `∫ f cos θo dωo` grows like
+//! `1/cos θi` at grazing incidence for broad lobes. This module offers both that literal
+//! form ([`CosThetaI`]) and tri-Ace's reciprocal 2010 form, which divides by
+//! `max(N·L, N·V)` instead ([`MaxCos`]); the tests prove the declared properties of each.
+
+use core::marker::PhantomData;
+
+use super::{
+    Brdf, DENOM_FLOOR, Energy, Properties, Reciprocity, half_and_cos_d, masked, safe_dirs,
+    schlick_weight, splat_channels, unit_channels,
+};
+use crate::normalization::{Normalization, TRI_ACE_OFFSET};
+use crate::{Error, Real, Scalar, Vec3};
+
+/// Validates a Phong exponent: finite and `≥ 0`.
+#[inline]
+fn shininess_of<S: Scalar>(s: S) -> Result<f64, Error> {
+    Ok(crate::error::non_negative("shininess", s)?.into())
+}
+
+/// `F0 + (1 − F0)(1 − c)⁵` per channel (Schlick 1994).
+#[inline(always)]
+fn schlick_channels<R: Real, const N: usize>(f0: &[R; N], c: R) -> [R; N] {
+    let w = schlick_weight(c);
+    f0.map(|f0| f0 + (R::one() - f0) * w)
+}
+
+/// Blinn-Phong as games wrote it before physically based shading, expressed as a BRDF.
+///
+/// The engine formula (the seed talk's "Blinn-Phong", with Schlick's Fresnel on `E·H`):
+///
+/// ```text
+/// Out = R_d (N·L) + R_s F(F0, E·H) (N·H)^s,     F(F0, c) = F0 + (1 − F0)(1 − c)⁵
+/// ```
+///
+/// is the radiance for a light of unit intensity, `Out = f · cos θi`. Dividing the `N·L`
+/// weighting out gives the BRDF this type evaluates:
+///
+/// ```text
+/// f(wi, wo) = R_d + R_s F(F0, wo·wm) (wm.z)^s / cos θi,      wm = normalize(wi + wo)
+/// ```
+///
+/// ([`BlinnPhongClassic::out`] returns the engine's `Out` itself.) What this means:
+///
+/// * `R_d` is **not** an albedo: the diffuse albedo is `π R_d` (engines folded the `π` into
+///   the light's units), so `R_d > 1/π` reflects more than it receives.
+/// * The specular lobe is **not normalized**: its peak stays `R_s` whatever `s`, so the
+///   reflected energy changes with `s` — the problem the seed talk sets out to fix.
+/// * Dividing only by `cos θi` makes it **not reciprocal**, and the light-side albedo
+///   `∫ f cos θo dωo` grows like `1/cos θi` at grazing incidence.
+///
+/// Domain: `R_d, R_s, F0 ∈ [0, 1]`, `s ∈ [0, ∞)`. `cos θi` below [`DENOM_FLOOR`] is floored.
+///
+/// References: J. F. Blinn, "Models of Light Reflection for Computer Synthesized Pictures",
+/// SIGGRAPH 1977; C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering",
+/// Eurographics 1994; Y. Gotanda, "Basic of Reflectance", tri-Ace, 2009.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BlinnPhongClassic<R, const N: usize> {
+    rd: [R; N],
+    rs: R,
+    f0: [R; N],
+    shininess: R,
+}
+
+impl<R: Real, const N: usize> BlinnPhongClassic<R, N> {
+    /// Engine Blinn-Phong with diffuse `rd`, specular coefficient `rs`, normal-incidence
+    /// Fresnel reflectance `f0` (all in `[0, 1]`) and exponent `shininess ∈ [0, ∞)`.
+    ///
+    /// # Errors
+    /// Names `"rd"`, `"rs"`, `"f0"` or `"shininess"`.
+    #[inline]
+    pub fn new(
+        rd: [R::Scalar; N],
+        rs: R::Scalar,
+        f0: [R::Scalar; N],
+        shininess: R::Scalar,
+    ) -> Result<Self, Error> {
+        let rd = unit_channels("rd", rd)?;
+        let rs: f64 = crate::error::unit_interval("rs", rs)?.into();
+        let f0 = unit_channels("f0", f0)?;
+        let s = shininess_of(shininess)?;
+        Ok(Self {
+            rd: splat_channels(rd),
+            rs: R::from_f64(rs),
+            f0: splat_channels(f0),
+            shininess: R::from_f64(s),
+        })
+    }
+
+    /// `R_s F(F0, wo·wm) (wm.z)^s`, the specular part of `Out`, on safe directions.
+    #[inline(always)]
+    fn specular_out(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (wm, cos_d) = half_and_cos_d(wi, wo);
+        let lobe = self.rs * wm.z.saturate().pow(self.shininess);
+        schlick_channels(&self.f0, cos_d).map(|f| f * lobe)
+    }
+
+    /// The engine's shading result `Out = R_d (N·L) + R_s F(F0, E·H) (N·H)^s` for a light
+    /// of unit intensity (`= f · cos θi`); `0` below the horizon.
+    #[inline]
+    #[must_use]
+    pub fn out(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (m, wi, wo) = safe_dirs(wi, wo);
+        let spec = self.specular_out(wi, wo);
+        let r: [R; N] = core::array::from_fn(|c| self.rd[c].mul_add(wi.z, spec[c]));
+        masked(m, r)
+    }
+}
+
+impl<R: Real, const N: usize> Brdf<R, N> for BlinnPhongClassic<R, N> {
+    #[inline]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (m, wi, wo) = safe_dirs(wi, wo);
+        let inv_cos_i = wi.z.max(R::from_f64(DENOM_FLOOR)).recip();
+        let spec = self.specular_out(wi, wo);
+        let r: [R; N] = core::array::from_fn(|c| spec[c].mul_add(inv_cos_i, self.rd[c]));
+        masked(m, r)
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        Properties {
+            reciprocity: Reciprocity::NotReciprocal {
+                note: "the specular term is divided by cos θi only",
+            },
+            energy: Energy::NotConserving {
+                note: "unnormalized lobe: R_d is albedo/π and the specular albedo grows \
+                       like 1/cos θi at grazing incidence",
+            },
+        }
+    }
+}
+
+/// The denominator that turns the normalized Blinn-Phong specular `Out` into a BRDF:
+/// [`CosThetaI`] (the seed talk, literal) or [`MaxCos`] (tri-Ace 2010, reciprocal).
+pub trait SpecularDenominator: Copy + core::fmt::Debug + 'static {
+    /// Whether `denom(cos θi, cos θo) = denom(cos θo, cos θi)`.
+    const RECIPROCAL: bool;
+    /// The denominator, floored at [`DENOM_FLOOR`]; arguments in `(0, 1]`.
+    fn denom<R: Real>(cos_theta_i: R, cos_theta_o: R) -> R;
+}
+
+/// The seed talk's literal form: `Out / (N·L)`, i.e. divide by `cos θi`. Not reciprocal.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CosThetaI;
+
+impl SpecularDenominator for CosThetaI {
+    const RECIPROCAL: bool = false;
+    #[inline(always)]
+    fn denom<R: Real>(cos_theta_i: R, _cos_theta_o: R) -> R {
+        cos_theta_i.max(R::from_f64(DENOM_FLOOR))
+    }
+}
+
+/// tri-Ace's 2010 reciprocal form: divide by `max(N·L, N·V)` (Gotanda, "Practical
+/// Implementation of Physically-Based Shading Models at tri-Ace", SIGGRAPH 2010 course
+/// "Physically-Based Shading Models in Film and Game Production").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MaxCos;
+
+impl SpecularDenominator for MaxCos {
+    const RECIPROCAL: bool = true;
+    #[inline(always)]
+    fn denom<R: Real>(cos_theta_i: R, cos_theta_o: R) -> R {
+        cos_theta_i.max(cos_theta_o).max(R::from_f64(DENOM_FLOOR))
+    }
+}
+
+/// The specular lobe of the normalized Blinn-Phong.
+///
+/// ```text
+/// f(wi, wo) = R_s c(s) F(F0, wo·wm) (wm.z)^s / V(cos θi, cos θo)
+/// c(s) = (s + 2)/(4π(2 − 2^(−s/2)))  (Normalization::TriAceExact, the seed's derivation)
+///      = (s + 2.04)/(8π)               (Normalization::TRI_ACE_2009_FIT, the seed's fit)
+///      = 0.0397436 s + 0.0856832       (Normalization::TriAce2010Fit), or any other
+///                                       crate::normalization::Normalization
+/// V = cos θi (CosThetaI, the seed)   or   max(cos θi, cos θo) (MaxCos, tri-Ace 2010)
+/// F(F0, c) = F0 + (1 − F0)(1 − c)⁵
+/// ```
+///
+/// With [`CosThetaI`] the lobe is the seed talk's specular `Out` divided by `N·L`; its
+/// view-side albedo `∫ f cos θi dωi = R_s c(s) ∫ F (wm.z)^s dωi` is exactly `R_s` at
+/// `wo = n` for `F ≡ 1` and the exact `c(s)` (that is how `c(s)` was derived), but the
+/// lobe is not reciprocal and its light-side albedo `∫ f cos θo dωo` exceeds 1 at grazing
+/// incidence. With [`MaxCos`] it is reciprocal and
+/// its albedo stays ≤ `R_s` for the tri-Ace factors (proved numerically in the tests for
+/// `s ∈ [0, 10⁴]`).
+///
+/// Domain: `R_s, F0 ∈ [0, 1]`, `s ∈ [0, ∞)`.
+///
+/// References: Y. Gotanda, "Basic of Reflectance", tri-Ace, Imagine Day 2009 (the seed);
+/// Y. Gotanda, SIGGRAPH 2010 course (the `max(N·L, N·V)` form); C. Schlick 1994.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalizedBlinnPhongSpecular<R, const N: usize, V = CosThetaI> {
+    rs_c: R,
+    f0: [R; N],
+    shininess: R,
+    normalization: Normalization,
+    _v: PhantomData<V>,
+}
+
+impl<R: Real, const N: usize, V: SpecularDenominator> NormalizedBlinnPhongSpecular<R, N, V> {
+    /// Lobe with specular intensity `rs ∈ [0, 1]`, Fresnel `f0 ∈ [0, 1]` per channel and
+    /// exponent `shininess ∈ [0, ∞)`; `c(s)` is computed once, in `f64`.
+    ///
+    /// # Errors
+    /// Names `"rs"`, `"f0"`, `"shininess"` or `"offset"` (of [`Normalization::TriAceFit`]).
+    #[inline]
+    pub fn new(
+        rs: R::Scalar,
+        f0: [R::Scalar; N],
+        shininess: R::Scalar,
+        normalization: Normalization,
+    ) -> Result<Self, Error> {
+        let rs: f64 = crate::error::unit_interval("rs", rs)?.into();
+        let f0 = unit_channels("f0", f0)?;
+        let s = shininess_of(shininess)?;
+        let normalization = normalization.validate()?;
+        Ok(Self {
+            rs_c: R::from_f64(rs * normalization.factor(s)),
+            f0: splat_channels(f0),
+            shininess: R::from_f64(s),
+            normalization,
+            _v: PhantomData,
+        })
+    }
+
+    /// The normalization this lobe was built with.
+    #[inline]
+    #[must_use]
+    pub fn normalization(&self) -> Normalization {
+        self.normalization
+    }
+}
+
+impl<R: Real, const N: usize, V: SpecularDenominator> Brdf<R, N>
+    for NormalizedBlinnPhongSpecular<R, N, V>
+{
+    #[inline]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (m, wi, wo) = safe_dirs(wi, wo);
+        let (wm, cos_d) = half_and_cos_d(wi, wo);
+        let lobe = self.rs_c * wm.z.saturate().pow(self.shininess) / V::denom(wi.z, wo.z);
+        masked(m, schlick_channels(&self.f0, cos_d).map(|f| f * lobe))
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        if V::RECIPROCAL {
+            let tested = match self.normalization {
+                Normalization::TriAceExact | Normalization::TriAce2010Fit => true,
+                Normalization::TriAceFit { offset } => offset <= TRI_ACE_OFFSET,
+                _ => false,
+            };
+            Properties {
+                reciprocity: Reciprocity::Reciprocal,
+                energy: if tested {
+                    Energy::Conserving
+                } else {
+                    Energy::ConservingWhen {
+                        condition: "c(s) ≤ the tri-Ace factors (TriAceExact, TriAceFit with \
+                                    offset ≤ 2.04, TriAce2010Fit: albedo ≤ R_s, tested); larger \
+                                    factors (e.g. BlinnPhongNdf) exceed 1",
+                    }
+                },
+            }
+        } else {
+            Properties {
+                reciprocity: Reciprocity::NotReciprocal {
+                    note: "seed form: the specular Out is divided by cos θi only",
+                },
+                energy: Energy::NotConserving {
+                    note: "seed form: the light-side albedo ∫ f cos θo dωo grows like \
+                           1/cos θi at grazing incidence (view-side albedo ≤ 1 with the \
+                           exact normalization)",
+                },
+            }
+        }
+    }
+}
+
+/// The seed talk's energy-conserving diffuse: Lambert weighted by what the specular does
+/// not reflect.
+///
+/// ```text
+/// f(wi, wo) = (R_d/π) (1 − R_s F(F0, cos θi)),     F(F0, c) = F0 + (1 − F0)(1 − c)⁵
+/// ```
+///
+/// The talk's `Out = R_d/π (1 − R_s F_diffuse(F0)) (N·L)` divided by `N·L`. It depends on
+/// `wi` only, so it is **not reciprocal** (the talk says so); its albedo is
+/// `R_d (1 − R_s F(F0, cos θi)) ≤ R_d ≤ 1`. Domain: `R_d, R_s, F0 ∈ [0, 1]`.
+///
+/// Reference: Y. Gotanda, "Basic of Reflectance", tri-Ace, Imagine Day 2009.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CoupledLambert<R, const N: usize> {
+    rd_over_pi: [R; N],
+    rs: R,
+    f0: [R; N],
+}
+
+impl<R: Real, const N: usize> CoupledLambert<R, N> {
+    /// Diffuse `rd`, specular intensity `rs` and Fresnel `f0`, all in `[0, 1]`.
+    ///
+    /// # Errors
+    /// Names `"rd"`, `"rs"` or `"f0"`.
+    #[inline]
+    pub fn new(rd: [R::Scalar; N], rs: R::Scalar, f0: [R::Scalar; N]) -> Result<Self, Error> {
+        let rd = unit_channels("rd", rd)?;
+        let rs: f64 = crate::error::unit_interval("rs", rs)?.into();
+        let f0 = unit_channels("f0", f0)?;
+        Ok(Self {
+            rd_over_pi: splat_channels(rd.map(|r| r * core::f64::consts::FRAC_1_PI)),
+            rs: R::from_f64(rs),
+            f0: splat_channels(f0),
+        })
+    }
+}
+
+impl<R: Real, const N: usize> Brdf<R, N> for CoupledLambert<R, N> {
+    #[inline]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (m, wi, _) = safe_dirs(wi, wo);
+        let f = schlick_channels(&self.f0, wi.z);
+        let r: [R; N] =
+            core::array::from_fn(|c| self.rd_over_pi[c] * (-self.rs).mul_add(f[c], R::one()));
+        masked(m, r)
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        Properties {
+            reciprocity: Reciprocity::NotReciprocal {
+                note: "the Fresnel weight depends on cos θi only",
+            },
+            energy: Energy::Conserving,
+        }
+    }
+}
+
+/// The complete normalized Blinn-Phong of the seed talk: [`CoupledLambert`] plus
+/// [`NormalizedBlinnPhongSpecular`].
+///
+/// ```text
+/// Out = R_d/π (1 − R_s F(F0, N·L)) (N·L) + R_s c(s) F(F0, E·H) (N·H)^s
+/// f   = R_d/π (1 − R_s F(F0, cos θi))     + R_s c(s) F(F0, wo·wm) (wm.z)^s / V
+/// ```
+///
+/// With `V = CosThetaI` this is the talk's final model ("最終的に導出された正規化
+/// Blinn-Phong", with [`Normalization::TriAceExact`], or the slide "改良されたBlinn-Phongの式" with
+/// [`Normalization::TRI_ACE_2009_FIT`]). Neither form is reciprocal (the diffuse depends on `wi`
+/// only). The diffuse coupling uses `F(F0, N·L)` as a stand-in for the specular's true
+/// albedo, so the sum can exceed albedo 1 (proved in the tests, e.g. `R_d = R_s = 1`,
+/// `F0 = 0`, grazing `wo`).
+///
+/// Reference: Y. Gotanda, "Basic of Reflectance", tri-Ace, Imagine Day 2009.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::{Vec3, models::{Brdf, Normalization, NormalizedBlinnPhong, CosThetaI}};
+/// let m = NormalizedBlinnPhong::<f32, 3, CosThetaI>::new(
+///     [0.8, 0.5, 0.3], 0.5, [0.04; 3], 64.0, Normalization::TriAceExact)?;
+/// let n = Vec3::new(0.0, 0.0, 1.0);
+/// let f = m.eval(n, n);
+/// // Diffuse (0.8/π)(1 − 0.5·0.04) plus the lobe peak 0.5·c(64)·0.04.
+/// let c = brdf::normalization::tri_ace_exact(64.0_f32);
+/// let expect = 0.8 / core::f32::consts::PI * (1.0 - 0.5 * 0.04) + 0.5 * c * 0.04;
+/// assert!((f[0] - expect).abs() < 1e-5);
+/// # Ok::<(), brdf::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalizedBlinnPhong<R, const N: usize, V = CosThetaI> {
+    /// The energy-conserving diffuse term.
+    pub diffuse: CoupledLambert<R, N>,
+    /// The normalized specular lobe.
+    pub specular: NormalizedBlinnPhongSpecular<R, N, V>,
+}
+
+impl<R: Real, const N: usize, V: SpecularDenominator> NormalizedBlinnPhong<R, N, V> {
+    /// The seed's model with diffuse `rd`, specular intensity `rs`, Fresnel `f0` (all in
+    /// `[0, 1]`) and exponent `shininess ∈ [0, ∞)`.
+    ///
+    /// # Errors
+    /// Names `"rd"`, `"rs"`, `"f0"` or `"shininess"`.
+    #[inline]
+    pub fn new(
+        rd: [R::Scalar; N],
+        rs: R::Scalar,
+        f0: [R::Scalar; N],
+        shininess: R::Scalar,
+        normalization: Normalization,
+    ) -> Result<Self, Error> {
+        Ok(Self {
+            diffuse: CoupledLambert::new(rd, rs, f0)?,
+            specular: NormalizedBlinnPhongSpecular::new(rs, f0, shininess, normalization)?,
+        })
+    }
+}
+
+impl<R: Real, const N: usize, V: SpecularDenominator> Brdf<R, N> for NormalizedBlinnPhong<R, N, V> {
+    #[inline]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let d = self.diffuse.eval(wi, wo);
+        let s = self.specular.eval(wi, wo);
+        core::array::from_fn(|c| d[c] + s[c])
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        Properties {
+            reciprocity: Reciprocity::NotReciprocal {
+                note: "the diffuse Fresnel weight depends on cos θi only (and the seed \
+                       form's specular is divided by cos θi)",
+            },
+            energy: Energy::NotConserving {
+                note: "the diffuse coupling 1 − R_s F(F0, N·L) underestimates the specular \
+                       albedo at grazing view (R_s = 1, F0 = 0)",
+            },
+        }
+    }
+}

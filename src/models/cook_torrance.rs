@@ -1,0 +1,92 @@
+//! The Cook-Torrance microfacet BRDF, composed at compile time from an NDF, a Fresnel term
+//! and a masking-shadowing term.
+
+use core::marker::PhantomData;
+
+use super::{Brdf, Energy, Properties, Reciprocity, half_and_cos_d, masked, safe_dirs};
+use crate::fresnel::FresnelTerm;
+use crate::masking::Masking;
+use crate::ndf::Ndf;
+use crate::{Real, Vec3};
+
+/// Microfacet reflection `f = D · F · G2 / (4 cos θi cos θo)`, generic over its parts.
+///
+/// ```text
+/// f(wi, wo) = D(wm) · F(wi·wm) · V(wi, wo, wm),    wm = normalize(wi + wo)
+/// V = G2 / (4 cos θi cos θo)                       (Masking::visibility)
+/// ```
+///
+/// `D: Ndf<R>`, `F: FresnelTerm<R, N>` (conductor, dielectric, Schlick, …) and
+/// `G: Masking<R, D>` are type parameters, so a scene that needs only GGX + Schlick + an
+/// approximate visibility monomorphizes exactly that and pays for nothing else. The body
+/// calls `G::visibility`, which approximate terms override with their cheaper direct forms.
+///
+/// Below the horizon the parts are evaluated on the normal (finite by construction) and the
+/// result is replaced by 0, so no part ever sees `cos θ ≤ 0`.
+///
+/// Properties: reciprocal (D depends on `wm` only, `wi·wm = wo·wm`, and G2 is symmetric in
+/// the masking terms of this crate). Albedo ≤ 1 when `F ≤ 1` and G2 is a proper masking
+/// term, i.e. `G2(wi, wo, wm) ≤ G1(wo, wm)` for a `G1` satisfying the projected-area
+/// identity `∫ G1(wo, wm) D(wm) ⟨wo·wm⟩ dωm = cos θo` (Smith separable and height
+/// correlated) — checked numerically in the tests for GGX and Beckmann, `α ∈ [1e-3, 1]`,
+/// up to `θo = 89.99°`. With the V-cavity term the measured albedo reaches `1 + 1.6e-4` at
+/// `θo = 89.99°` (`α = 0.3`), at the accuracy limit of the quadratures; approximate terms
+/// (Kelemen, Implicit, Schlick-GGX) carry no such guarantee.
+///
+/// References: R. L. Cook, K. E. Torrance, "A Reflectance Model for Computer Graphics",
+/// ACM TOG 1(1), 1982; B. Walter et al., "Microfacet Models for Refraction through Rough
+/// Surfaces", EGSR 2007; E. Heitz, "Understanding the Masking-Shadowing Function in
+/// Microfacet-Based BRDFs", JCGT 3(2), 2014.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CookTorrance<R, D, F, G> {
+    /// The normal distribution `D(wm)`.
+    pub ndf: D,
+    /// The Fresnel term `F(wi·wm)`.
+    pub fresnel: F,
+    /// The masking-shadowing term `G2` (through its visibility form).
+    pub masking: G,
+    _r: PhantomData<R>,
+}
+
+impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>> CookTorrance<R, D, F, G> {
+    /// Composes a microfacet BRDF; each part validated its own parameters when it was built.
+    #[inline]
+    #[must_use]
+    pub const fn new(ndf: D, fresnel: F, masking: G) -> Self {
+        Self {
+            ndf,
+            fresnel,
+            masking,
+            _r: PhantomData,
+        }
+    }
+}
+
+impl<R, D, F, G, const N: usize> Brdf<R, N> for CookTorrance<R, D, F, G>
+where
+    R: Real,
+    D: Ndf<R>,
+    F: FresnelTerm<R, N>,
+    G: Masking<R, D>,
+{
+    #[inline(always)]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (m, wi, wo) = safe_dirs(wi, wo);
+        // cos θd = wi·wm = wo·wm, computed symmetrically as |wi + wo|/2.
+        let (wm, cos_d) = half_and_cos_d(wi, wo);
+        let dv = self.ndf.d(wm) * self.masking.visibility(&self.ndf, wi, wo, wm);
+        let f = self.fresnel.eval(cos_d);
+        masked(m, f.map(|f| f * dv))
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        Properties {
+            reciprocity: Reciprocity::Reciprocal,
+            energy: Energy::ConservingWhen {
+                condition: "F ≤ 1 and G2(wi, wo, wm) ≤ G1(wo, wm) of a masking function with \
+                            ∫ G1 D ⟨wo·wm⟩ dωm = cos θo (the Smith terms)",
+            },
+        }
+    }
+}

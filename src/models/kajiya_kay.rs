@@ -1,0 +1,186 @@
+//! Kajiya-Kay's fibre (hair, fur) reflection model (1989).
+
+use super::{
+    Brdf, Energy, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
+};
+use crate::{Error, Real, Vec3};
+
+/// `ln Γ(x)` for `x > 0` (Stirling series after shifting `x ≥ 10`; ~1e-15 relative).
+fn ln_gamma(mut x: f64) -> f64 {
+    let mut shift = 0.0;
+    while x < 10.0 {
+        shift -= <f64 as Real>::ln(x);
+        x += 1.0;
+    }
+    let (x2, ln2pi) = (x * x, <f64 as Real>::ln(2.0 * core::f64::consts::PI));
+    let series = 1.0 / (12.0 * x) - 1.0 / (360.0 * x * x2) + 1.0 / (1260.0 * x * x2 * x2)
+        - 1.0 / (1680.0 * x * x2 * x2 * x2);
+    shift + (x - 0.5) * <f64 as Real>::ln(x) - x + 0.5 * ln2pi + series
+}
+
+/// `W(p) = ∫_{−π/2}^{π/2} cosᵖ u du = √π Γ((p + 1)/2) / Γ(p/2 + 1)` (Wallis integral).
+#[must_use]
+pub(crate) fn wallis(p: f64) -> f64 {
+    <f64 as Real>::exp(
+        0.5 * <f64 as Real>::ln(core::f64::consts::PI) + ln_gamma((p + 1.0) / 2.0)
+            - ln_gamma(p / 2.0 + 1.0),
+    )
+}
+
+/// Kajiya and Kay's reflection from a thin fibre (hair, fur) with tangent `t`.
+///
+/// **Tangent convention.** `t` is the fibre direction given as a unit vector *in the local
+/// shading frame* (whose z is the surface or hair-card normal). It is **not** that frame's z:
+/// for strands combed along a card's tangent, `t = (1, 0, 0)`. With `cᵢ = t·wi`,
+/// `cₒ = t·wo`, `sᵢ = √(1 − cᵢ²)` (the sine of the angle between the fibre and `wi`),
+/// `sₒ = √(1 − cₒ²)`:
+///
+/// ```text
+/// f(wi, wo) = kd/π · sᵢ  +  ks · c(p) · max(0, sᵢ sₒ − cᵢ cₒ)^p
+/// ```
+///
+/// * Diffuse: Kajiya-Kay's `kd sin(t, l)` — a Lambertian cylinder's radiance is
+///   proportional to the sine between the fibre and the light. It is read here as a BRDF
+///   with Lambert's `1/π`, so that `kd` is a reflectance (albedo ≤ `kd`). It depends on `wi`
+///   only: **not reciprocal**.
+/// * Specular: `cos^p` of the angle between `wo` and the cone of mirror directions around
+///   `t`. With both directions pointing away from the fibre that cone is `t·wo = −t·wi`, so
+///   `cos φ = sᵢ sₒ − cᵢ cₒ = cos(π − θᵢ − θₒ)` (θ measured from `t`). The paper, whose light
+///   vector points towards the fibre, writes `+cᵢcₒ`. Symmetric in `wi` and `wo`.
+/// * Normalization `c(p)`: the published model has none (`c = 1`, [`KajiyaKay::new`]): the
+///   reflected energy changes with `p` and exceeds `ks` (and 1) for broad lobes — **not
+///   energy conserving**, proved by a test. [`KajiyaKay::normalized`] uses
+///   `c(p) = 1/(2π W(p))` with `W(p) = ∫ cosᵖ u du = √π Γ((p+1)/2)/Γ(p/2+1)`: the specular
+///   integral over the whole sphere of directions is then at most `ks` (integrate over the
+///   angle from `t` with `sin ≤ 1`, and over the azimuth about `t`), so albedo ≤ `kd + ks`.
+///
+/// Domain: `kd, ks ∈ [0, 1]` per channel, `p ∈ (0, 1e6]`, `t` finite and non-zero
+/// (normalized by the constructor).
+///
+/// Reference: J. T. Kajiya, T. L. Kay, "Rendering Fur with Three Dimensional Textures",
+/// SIGGRAPH 1989, §4.2.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::{Vec3, models::{Brdf, KajiyaKay}};
+/// let hair = KajiyaKay::<f32, 1>::new([0.0], [1.0], 50.0, [1.0, 0.0, 0.0])?;
+/// // Peak on the cone t·wo = −t·wi: here the mirror direction about the card normal.
+/// let (wi, wo) = (Vec3::new(0.6, 0.0, 0.8), Vec3::new(-0.6, 0.0, 0.8));
+/// assert!((hair.eval(wi, wo)[0] - 1.0).abs() < 1e-6);
+/// # Ok::<(), brdf::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KajiyaKay<R, const N: usize> {
+    t: Vec3<R>,
+    kd_over_pi: [R; N],
+    ks_c: [R; N],
+    p: R,
+    normalized: bool,
+}
+
+impl<R: Real, const N: usize> KajiyaKay<R, N> {
+    fn build(
+        kd: [R::Scalar; N],
+        ks: [R::Scalar; N],
+        p: R::Scalar,
+        tangent: [R::Scalar; 3],
+        normalized: bool,
+    ) -> Result<Self, Error> {
+        let kd = unit_channels("kd", kd)?;
+        let ks = unit_channels("ks", ks)?;
+        let p: f64 = crate::error::check("p", p, "(0, 1e6]", |v| v > 0.0 && v <= 1e6)?.into();
+        let mut t = [0.0f64; 3];
+        for (o, v) in t.iter_mut().zip(tangent) {
+            *o = crate::error::check("tangent", v, "finite", |_| true)?.into();
+        }
+        let len = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+        if len <= 1e-30 {
+            return Err(Error::OutOfDomain {
+                param: "tangent",
+                value: len,
+                domain: "length > 0",
+            });
+        }
+        let c = if normalized {
+            1.0 / (2.0 * core::f64::consts::PI * wallis(p))
+        } else {
+            1.0
+        };
+        Ok(Self {
+            t: Vec3::new(
+                R::from_f64(t[0] / len),
+                R::from_f64(t[1] / len),
+                R::from_f64(t[2] / len),
+            ),
+            kd_over_pi: splat_channels(kd.map(|k| k * core::f64::consts::FRAC_1_PI)),
+            ks_c: splat_channels(ks.map(|k| k * c)),
+            p: R::from_f64(p),
+            normalized,
+        })
+    }
+
+    /// The published model (no specular normalization) with diffuse `kd`, specular `ks`
+    /// (per channel in `[0, 1]`), exponent `p ∈ (0, 1e6]` and fibre tangent `tangent` in
+    /// the local frame (normalized here).
+    ///
+    /// # Errors
+    /// Names `"kd"`, `"ks"`, `"p"` or `"tangent"` (non-finite or zero length).
+    #[inline]
+    pub fn new(
+        kd: [R::Scalar; N],
+        ks: [R::Scalar; N],
+        p: R::Scalar,
+        tangent: [R::Scalar; 3],
+    ) -> Result<Self, Error> {
+        Self::build(kd, ks, p, tangent, false)
+    }
+
+    /// The energy-bounded variant: the specular is scaled by `c(p) = 1/(2π W(p))`.
+    ///
+    /// # Errors
+    /// As [`KajiyaKay::new`].
+    #[inline]
+    pub fn normalized(
+        kd: [R::Scalar; N],
+        ks: [R::Scalar; N],
+        p: R::Scalar,
+        tangent: [R::Scalar; 3],
+    ) -> Result<Self, Error> {
+        Self::build(kd, ks, p, tangent, true)
+    }
+}
+
+impl<R: Real, const N: usize> Brdf<R, N> for KajiyaKay<R, N> {
+    #[inline]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (m, wi, wo) = safe_dirs(wi, wo);
+        let (ci, co) = (self.t.dot(wi), self.t.dot(wo));
+        let si = (-ci).mul_add(ci, R::one()).safe_sqrt();
+        let so = (-co).mul_add(co, R::one()).safe_sqrt();
+        let cos_phi = si.mul_add(so, -(ci * co)).clamp(R::zero(), R::one());
+        let lobe = cos_phi.pow(self.p);
+        let r: [R; N] =
+            core::array::from_fn(|c| self.ks_c[c].mul_add(lobe, self.kd_over_pi[c] * si));
+        masked(m, r)
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        Properties {
+            reciprocity: Reciprocity::NotReciprocal {
+                note: "the diffuse term kd sin(t, wi)/π depends on wi only",
+            },
+            energy: if self.normalized {
+                Energy::ConservingWhen {
+                    condition: "kd + ks ≤ 1 per channel",
+                }
+            } else {
+                Energy::NotConserving {
+                    note: "unnormalized specular: its albedo exceeds ks (and 1) for broad \
+                           lobes, e.g. ks = 1, p ≤ 2",
+                }
+            },
+        }
+    }
+}

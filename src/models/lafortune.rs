@@ -1,0 +1,191 @@
+//! Lafortune's generalized cosine lobes (1997).
+
+use super::{
+    Brdf, Energy, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
+};
+use crate::{Error, Real, Vec3};
+
+/// Largest allowed `ρ · max(|Cx|, |Cy|, |Cz|)^n` of a lobe: keeps every value finite in
+/// `f32`.
+const LOBE_PEAK_MAX: f64 = 1e30;
+
+/// One generalized cosine lobe `ρ · max(0, Cx wi.x wo.x + Cy wi.y wo.y + Cz wi.z wo.z)^n`.
+///
+/// Typical choices (Lafortune et al. 1997, §3):
+///
+/// * `Cx = Cy = −Cz`: a Phong lobe around the mirror direction (`−Cx = Cz = 1` gives
+///   `(wi_mirror·wo)^n`);
+/// * `|Cz| < |Cx|` (with `Cx = Cy < 0`): off-specular peak moving towards grazing angles;
+/// * `Cx = Cy > 0`: retro-reflection (peak towards `wo = wi`);
+/// * `Cx = Cy = 0`, `Cz > 0`: a lobe along the normal, `(Cz cos θi cos θo)^n`.
+///
+/// `n = 0` gives the constant `ρ` (`x⁰ = 1`, including `0⁰`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LafortuneLobe<S, const N: usize> {
+    /// Weight of `wi.x wo.x` (tangent).
+    pub cx: S,
+    /// Weight of `wi.y wo.y` (bitangent).
+    pub cy: S,
+    /// Weight of `wi.z wo.z` (normal).
+    pub cz: S,
+    /// Exponent `n ≥ 0`.
+    pub n: S,
+    /// Scale `ρ ≥ 0` per channel.
+    pub rho: [S; N],
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Lobe<R, const N: usize> {
+    cx: R,
+    cy: R,
+    cz: R,
+    n: R,
+    rho: [R; N],
+}
+
+/// Lafortune's reflectance model: a Lambertian term plus `K` generalized cosine lobes.
+///
+/// ```text
+/// f(wi, wo) = ρd/π + Σⱼ ρⱼ · max(0, Cxⱼ wi.x wo.x + Cyⱼ wi.y wo.y + Czⱼ wi.z wo.z)^nⱼ
+/// ```
+///
+/// Each lobe is `ρ (v·wo)^n` with `v = (Cx wi.x, Cy wi.y, Cz wi.z)`: a cosine lobe about
+/// `v̂` scaled by `|v|^n`. Symmetric in `wi` and `wo`, hence reciprocal.
+///
+/// **Energy bound.** With `Cmax = max(|Cx|, |Cy|, |Cz|)`, `|v| ≤ Cmax`, and the integral of
+/// the product of two cosine lobes over the sphere is largest when their axes coincide
+/// (rearrangement), so `∫ (v̂·wo)₊ⁿ cos θo dωo ≤ ∫ cos⁺ⁿ⁺¹ θ dω = 2π/(n + 2)`. Hence the
+/// sufficient condition, per channel,
+///
+/// ```text
+/// B = ρd + Σⱼ ρⱼ Cmaxⱼ^nⱼ · 2π/(nⱼ + 2) ≤ 1   ⇒   albedo ≤ 1 for every direction
+/// ```
+///
+/// ([`Lafortune::energy_bound`] returns `B`; [`Brdf::properties`] declares
+/// [`Energy::Conserving`] when `B ≤ 1` in every channel). A normalized Phong lobe
+/// (`−Cx = −Cy = Cz = 1`) with `ρ = (n + 2)/(2π)` meets it with equality.
+///
+/// Domain: `ρd ∈ [0, 1]`; per lobe `Cx, Cy, Cz` finite, `n ∈ [0, ∞)`, `ρ ∈ [0, ∞)` with
+/// `ρ Cmax^n ≤ 1e30` (finite in `f32`).
+///
+/// Reference: E. P. F. Lafortune, S.-C. Foo, K. E. Torrance, D. P. Greenberg, "Non-Linear
+/// Approximation of Reflectance Functions", SIGGRAPH 1997.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::{Vec3, models::{Brdf, Lafortune, LafortuneLobe}};
+/// // A normalized Phong lobe: (n + 2)/(2π) (mirror(wi)·wo)^n.
+/// let n = 20.0;
+/// let lobe = LafortuneLobe { cx: -1.0, cy: -1.0, cz: 1.0, n, rho: [(n + 2.0) / (2.0 * core::f64::consts::PI)] };
+/// let m = Lafortune::<f64, 1, 1>::new([0.0], [lobe])?;
+/// assert!(m.energy_bound()[0] <= 1.0 + 1e-12);
+/// let wi = Vec3::new(0.6, 0.0, 0.8);
+/// let mirror = Vec3::new(-0.6, 0.0, 0.8);
+/// assert!((m.eval(wi, mirror)[0] - (n + 2.0) / (2.0 * core::f64::consts::PI)).abs() < 1e-12);
+/// # Ok::<(), brdf::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lafortune<R, const N: usize, const K: usize> {
+    rho_d_over_pi: [R; N],
+    lobes: [Lobe<R, N>; K],
+    bound: [f64; N],
+}
+
+impl<R: Real, const N: usize, const K: usize> Lafortune<R, N, K> {
+    /// Lambertian `rho_d ∈ [0, 1]` per channel plus `K` lobes.
+    ///
+    /// # Errors
+    /// Names `"rho_d"`, `"cx"`, `"cy"`, `"cz"`, `"n"` or `"rho"` (a lobe whose peak
+    /// `ρ Cmax^n` exceeds `1e30` is rejected naming `"n"`).
+    pub fn new(
+        rho_d: [R::Scalar; N],
+        lobes: [LafortuneLobe<R::Scalar, N>; K],
+    ) -> Result<Self, Error> {
+        let rho_d = unit_channels("rho_d", rho_d)?;
+        let mut bound = rho_d;
+        let mut out = [Lobe {
+            cx: R::zero(),
+            cy: R::zero(),
+            cz: R::zero(),
+            n: R::zero(),
+            rho: [R::zero(); N],
+        }; K];
+        for (o, l) in out.iter_mut().zip(lobes) {
+            let fin = |p, v: R::Scalar| {
+                crate::error::check(p, v, "(−∞, ∞)", |_| true).map(Into::<f64>::into)
+            };
+            let (cx, cy, cz) = (fin("cx", l.cx)?, fin("cy", l.cy)?, fin("cz", l.cz)?);
+            let n: f64 = crate::error::non_negative("n", l.n)?.into();
+            let mut rho = [0.0; N];
+            for (r, &v) in rho.iter_mut().zip(&l.rho) {
+                *r = crate::error::non_negative("rho", v)?.into();
+            }
+            let cmax = cx.abs().max(cy.abs()).max(cz.abs());
+            let cmax_n = <f64 as Real>::pow(cmax, n);
+            let rho_max = rho.iter().copied().fold(0.0, f64::max);
+            if rho_max * cmax_n > LOBE_PEAK_MAX || cmax_n.is_nan() {
+                return Err(Error::OutOfDomain {
+                    param: "n",
+                    value: n,
+                    domain: "ρ·max|C|^n ≤ 1e30",
+                });
+            }
+            for (b, r) in bound.iter_mut().zip(rho) {
+                *b += r * cmax_n * 2.0 * core::f64::consts::PI / (n + 2.0);
+            }
+            *o = Lobe {
+                cx: R::from_f64(cx),
+                cy: R::from_f64(cy),
+                cz: R::from_f64(cz),
+                n: R::from_f64(n),
+                rho: splat_channels(rho),
+            };
+        }
+        Ok(Self {
+            rho_d_over_pi: splat_channels(rho_d.map(|r| r * core::f64::consts::FRAC_1_PI)),
+            lobes: out,
+            bound,
+        })
+    }
+
+    /// The sufficient energy bound `B = ρd + Σⱼ ρⱼ Cmaxⱼ^nⱼ 2π/(nⱼ + 2)` per channel
+    /// (albedo ≤ `B` for every direction).
+    #[inline]
+    #[must_use]
+    pub fn energy_bound(&self) -> [f64; N] {
+        self.bound
+    }
+}
+
+impl<R: Real, const N: usize, const K: usize> Brdf<R, N> for Lafortune<R, N, K> {
+    #[inline]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (m, wi, wo) = safe_dirs(wi, wo);
+        let (px, py, pz) = (wi.x * wo.x, wi.y * wo.y, wi.z * wo.z);
+        let mut r = self.rho_d_over_pi;
+        for l in &self.lobes {
+            let base = l.cx.mul_add(px, l.cy.mul_add(py, l.cz * pz)).max(R::zero());
+            let v = base.pow(l.n);
+            for (rc, rho) in r.iter_mut().zip(&l.rho) {
+                *rc = rho.mul_add(v, *rc);
+            }
+        }
+        masked(m, r)
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        Properties {
+            reciprocity: Reciprocity::Reciprocal,
+            energy: if self.bound.iter().all(|&b| b <= 1.0) {
+                Energy::Conserving
+            } else {
+                Energy::ConservingWhen {
+                    condition: "sufficient: ρd + Σ ρⱼ max(|Cx|,|Cy|,|Cz|)^nⱼ 2π/(nⱼ + 2) ≤ 1 \
+                                (Lafortune::energy_bound); this instance does not meet it",
+                }
+            },
+        }
+    }
+}

@@ -1,0 +1,61 @@
+//! Lambertian diffuse reflection.
+
+use super::{Brdf, Energy, Properties, Reciprocity, masked, splat_channels, unit_channels, upper};
+use crate::{Error, Real, Vec3};
+
+/// Lambertian (ideal diffuse) reflection.
+///
+/// ```text
+/// f(wi, wo) = albedo / π        (wi.z > 0 and wo.z > 0; 0 otherwise)
+/// ```
+///
+/// Directional albedo `∫ f cos θi dωi = albedo` for every `wo`. Reciprocal; albedo ≤ 1 for
+/// `albedo ∈ [0, 1]`, the constructor's domain.
+///
+/// Reference: J. H. Lambert, *Photometria*, 1760; as a BRDF: F. E. Nicodemus et al.,
+/// "Geometrical Considerations and Nomenclature for Reflectance", NBS Monograph 160, 1977.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::{Vec3, models::{Brdf, Lambert}};
+/// let m = Lambert::<f32, 3>::new([0.5, 0.25, 1.0])?;
+/// let up = Vec3::new(0.0, 0.0, 1.0);
+/// let f = m.eval(up, Vec3::new(0.6, 0.0, 0.8));
+/// assert!((f[0] - 0.5 / core::f32::consts::PI).abs() < 1e-7);
+/// assert_eq!(m.eval(Vec3::new(0.0, 0.6, -0.8), up), [0.0; 3]); // below the horizon
+/// # Ok::<(), brdf::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lambert<R, const N: usize> {
+    albedo_over_pi: [R; N],
+}
+
+impl<R: Real, const N: usize> Lambert<R, N> {
+    /// Lambertian reflection of `albedo ∈ [0, 1]` per channel.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming `"albedo"`.
+    #[inline]
+    pub fn new(albedo: [R::Scalar; N]) -> Result<Self, Error> {
+        let a = unit_channels("albedo", albedo)?;
+        Ok(Self {
+            albedo_over_pi: splat_channels(a.map(|a| a * core::f64::consts::FRAC_1_PI)),
+        })
+    }
+}
+
+impl<R: Real, const N: usize> Brdf<R, N> for Lambert<R, N> {
+    #[inline]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        masked(upper(wi, wo), self.albedo_over_pi)
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        Properties {
+            reciprocity: Reciprocity::Reciprocal,
+            energy: Energy::Conserving,
+        }
+    }
+}

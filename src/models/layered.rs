@@ -1,0 +1,154 @@
+//! Composition of models: sums and a Fresnel-weighted coat over a base.
+
+use super::{Brdf, Energy, Properties, Reciprocity, masked, safe_dirs};
+use crate::fresnel::FresnelTerm;
+use crate::{Real, Vec3};
+
+/// The sum of two models, `f = A + B` (e.g. a diffuse and a specular lobe), composed at
+/// compile time.
+///
+/// ```text
+/// f(wi, wo) = A(wi, wo) + B(wi, wo)
+/// ```
+///
+/// Reciprocal when both parts are. Energy: the albedos add, so the sum conserves energy
+/// only when `ρ_A(w) + ρ_B(w) ≤ 1`; the declaration says so (and reports a non-conserving
+/// part).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::{Vec3, models::{Brdf, Lambert, Sum, OrenNayar}};
+/// let m = Sum::new(Lambert::<f32, 1>::new([0.25])?, OrenNayar::<f32, 1>::new([0.25], 0.0)?);
+/// let n = Vec3::new(0.0, 0.0, 1.0);
+/// assert!((m.eval(n, n)[0] - 0.5 / core::f32::consts::PI).abs() < 1e-7);
+/// # Ok::<(), brdf::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sum<A, B> {
+    /// The first summand.
+    pub a: A,
+    /// The second summand.
+    pub b: B,
+}
+
+impl<A, B> Sum<A, B> {
+    /// `a + b`.
+    #[inline]
+    #[must_use]
+    pub const fn new(a: A, b: B) -> Self {
+        Self { a, b }
+    }
+}
+
+/// Reciprocity of a composition: reciprocal iff every part is.
+fn both_reciprocal(a: Properties, b: Properties) -> Reciprocity {
+    match (a.reciprocity, b.reciprocity) {
+        (Reciprocity::Reciprocal, Reciprocity::Reciprocal) => Reciprocity::Reciprocal,
+        (Reciprocity::NotReciprocal { note }, _) | (_, Reciprocity::NotReciprocal { note }) => {
+            Reciprocity::NotReciprocal { note }
+        }
+    }
+}
+
+impl<R: Real, const N: usize, A: Brdf<R, N>, B: Brdf<R, N>> Brdf<R, N> for Sum<A, B> {
+    #[inline]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (a, b) = (self.a.eval(wi, wo), self.b.eval(wi, wo));
+        core::array::from_fn(|c| a[c] + b[c])
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        let (a, b) = (self.a.properties(), self.b.properties());
+        let energy = match (a.energy, b.energy) {
+            (Energy::NotConserving { note }, _) | (_, Energy::NotConserving { note }) => {
+                Energy::NotConserving { note }
+            }
+            _ => Energy::ConservingWhen {
+                condition: "the parts' albedos add up to ≤ 1 for every direction",
+            },
+        };
+        Properties {
+            reciprocity: both_reciprocal(a, b),
+            energy,
+        }
+    }
+}
+
+/// A coat over a base: the coat reflects `S`, and the base `D` is seen through the coat's
+/// Fresnel transmission on the way in and out.
+///
+/// ```text
+/// f(wi, wo) = S(wi, wo) + (1 − F(cos θi)) (1 − F(cos θo)) · D(wi, wo)
+/// ```
+///
+/// A first-order layering (no refraction of the directions, no absorption, no
+/// interreflection between the layers), in the spirit of Weidlich and Wilkie's layered
+/// model and of the Fresnel-coupled diffuse of Shirley et al. 1997. `F: FresnelTerm<R, N>`
+/// is the coat's Fresnel term (e.g. dielectric, or Schlick with the coat's `F0`).
+///
+/// Reciprocal when `S` and `D` are (the weight is symmetric). Energy: the albedo is at most
+/// `ρ_S(wo) + (1 − F(cos θo)) ρ_D`, so it is ≤ 1 when the coat's albedo is at most its
+/// Fresnel reflectance `F(cos θo)` and `ρ_D ≤ 1`.
+///
+/// Reference: A. Weidlich, A. Wilkie, "Arbitrarily Layered Micro-Facet Surfaces", GRAPHITE
+/// 2007; P. Shirley et al., "A Practitioners' Assessment of Light Reflection Models",
+/// Pacific Graphics 1997.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Layered<D, S, F> {
+    /// The base (seen through the coat), e.g. a diffuse model.
+    pub base: D,
+    /// The coat's own reflection, e.g. a Cook-Torrance lobe.
+    pub coat: S,
+    /// The coat's Fresnel reflectance, applied as `1 − F` on each side.
+    pub fresnel: F,
+}
+
+impl<D, S, F> Layered<D, S, F> {
+    /// `coat + (1 − F(cos θi))(1 − F(cos θo)) · base`.
+    #[inline]
+    #[must_use]
+    pub const fn new(base: D, coat: S, fresnel: F) -> Self {
+        Self {
+            base,
+            coat,
+            fresnel,
+        }
+    }
+}
+
+impl<R, const N: usize, D, S, F> Brdf<R, N> for Layered<D, S, F>
+where
+    R: Real,
+    D: Brdf<R, N>,
+    S: Brdf<R, N>,
+    F: FresnelTerm<R, N>,
+{
+    #[inline]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (m, swi, swo) = safe_dirs(wi, wo);
+        let (fi, fo) = (self.fresnel.eval(swi.z), self.fresnel.eval(swo.z));
+        let (d, s) = (self.base.eval(wi, wo), self.coat.eval(wi, wo));
+        let r =
+            core::array::from_fn(|c| ((R::one() - fi[c]) * (R::one() - fo[c])).mul_add(d[c], s[c]));
+        masked(m, r)
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        let (d, s) = (self.base.properties(), self.coat.properties());
+        let energy = match (d.energy, s.energy) {
+            (Energy::NotConserving { note }, _) | (_, Energy::NotConserving { note }) => {
+                Energy::NotConserving { note }
+            }
+            _ => Energy::ConservingWhen {
+                condition: "the coat's albedo ρ_S(w) ≤ F(cos θ) and ρ_base ≤ 1",
+            },
+        };
+        Properties {
+            reciprocity: both_reciprocal(d, s),
+            energy,
+        }
+    }
+}

@@ -1,0 +1,93 @@
+//! Oren-Nayar rough diffuse reflection (qualitative model, 1994).
+
+use super::{
+    Brdf, Energy, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
+};
+use crate::{Error, Real, Vec3};
+
+/// The qualitative Oren-Nayar model of rough (V-cavity, Gaussian slope) diffuse surfaces.
+///
+/// ```text
+/// f(wi, wo) = ρ/π · (A + B · max(0, cos(φi − φo)) · sin α · tan β)
+/// A = 1 − 0.5 σ²/(σ² + 0.33),   B = 0.45 σ²/(σ² + 0.09)
+/// α = max(θi, θo),  β = min(θi, θo)
+/// ```
+///
+/// Evaluated without trigonometry: since `sin` is increasing and `cos` decreasing on
+/// `[0, π/2]`, `sin α tan β = sin θi sin θo / max(cos θi, cos θo)`, and
+/// `cos(φi − φo) sin θi sin θo = wi.x wo.x + wi.y wo.y`, so
+///
+/// ```text
+/// f = ρ/π · (A + B · max(0, wi.x wo.x + wi.y wo.y) / max(cos θi, cos θo))
+/// ```
+///
+/// (no division by `sin θ`, no `atan`). `σ = 0` gives `A = 1`, `B = 0` exactly: Lambert.
+///
+/// Properties: reciprocal. **Not energy conserving**: the qualitative model gains a little
+/// energy at grazing view for small roughness (ρ = 1, σ = 0.2 rad: albedo ≈ 1.014 at
+/// θo = 89°; the tests locate the violation); it also lacks the interreflection term of the
+/// full model. Domain: `ρ ∈ [0, 1]` per channel, `σ ∈ [0, ∞)` radians (the RMS slope
+/// angle; physically meaningful up to about `π/2`).
+///
+/// Reference: M. Oren, S. K. Nayar, "Generalization of Lambert's Reflectance Model",
+/// SIGGRAPH 1994 (eq. 30, the qualitative model).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::{Vec3, models::{Brdf, OrenNayar, Lambert}};
+/// let smooth = OrenNayar::<f32, 1>::new([0.7], 0.0)?;
+/// let lambert = Lambert::<f32, 1>::new([0.7])?;
+/// let (wi, wo) = (Vec3::new(0.6, 0.0, 0.8), Vec3::new(-0.28, 0.96, 0.0001));
+/// assert_eq!(smooth.eval(wi, wo), lambert.eval(wi, wo));
+/// # Ok::<(), brdf::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OrenNayar<R, const N: usize> {
+    a: [R; N],
+    b: [R; N],
+}
+
+impl<R: Real, const N: usize> OrenNayar<R, N> {
+    /// Albedo `rho ∈ [0, 1]` per channel and roughness `sigma ∈ [0, ∞)` (radians).
+    ///
+    /// # Errors
+    /// Names `"rho"` or `"sigma"`.
+    #[inline]
+    pub fn new(rho: [R::Scalar; N], sigma: R::Scalar) -> Result<Self, Error> {
+        let rho = unit_channels("rho", rho)?;
+        let s: f64 = crate::error::non_negative("sigma", sigma)?.into();
+        let s2 = s * s;
+        let a = 1.0 - 0.5 * s2 / (s2 + 0.33);
+        let b = 0.45 * s2 / (s2 + 0.09);
+        let k = rho.map(|r| r * core::f64::consts::FRAC_1_PI);
+        Ok(Self {
+            a: splat_channels(k.map(|k| k * a)),
+            b: splat_channels(k.map(|k| k * b)),
+        })
+    }
+}
+
+impl<R: Real, const N: usize> Brdf<R, N> for OrenNayar<R, N> {
+    #[inline]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (m, wi, wo) = safe_dirs(wi, wo);
+        let proj = wi.x.mul_add(wo.x, wi.y * wo.y).max(R::zero());
+        // Floored: keeps t ≤ 1e20 when both directions graze (B·t stays finite, and
+        // 0·t = 0 for σ = 0).
+        let t = proj / wi.z.max(wo.z).max(R::from_f64(super::DENOM_FLOOR));
+        let r: [R; N] = core::array::from_fn(|c| self.b[c].mul_add(t, self.a[c]));
+        masked(m, r)
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        Properties {
+            reciprocity: Reciprocity::Reciprocal,
+            energy: Energy::NotConserving {
+                note: "the qualitative model's albedo exceeds ρ slightly at grazing view for \
+                       small σ (ρ = 1, σ = 0.2 rad: ≈ 1.014 at θo = 89°)",
+            },
+        }
+    }
+}
