@@ -500,12 +500,96 @@ fn discontinuous_brdf_error_stays_within_the_documented_bound() {
     println!("half-space worst error {worst:e}");
 }
 
+/// A ring-shaped (Kajiya-Kay-like cone) lobe about a fixed axis `c`:
+/// `f = exp(−((β − β0)/w)²)/w` with `β = angle(c, wi)`.
+struct Ring {
+    c: Vec3<f64>,
+    beta0: f64,
+    w: f64,
+}
+impl Ring {
+    fn profile(&self, beta: f64) -> f64 {
+        (-((beta - self.beta0) / self.w).powi(2)).exp() / self.w
+    }
+    /// Same reduction as `cosine_lobe_reference`: closed-form azimuth about `c`, 1D polar
+    /// quadrature on panels of width `w/4` across the ring.
+    fn reference(&self) -> f64 {
+        let cz = self.c.z;
+        let sz = (1.0 - cz * cz).max(0.0).sqrt();
+        let g = |beta: f64| {
+            let (a, b) = (beta.cos() * cz, beta.sin() * sz);
+            let psi = if a >= b {
+                2.0 * PI * a
+            } else if a <= -b {
+                0.0
+            } else {
+                2.0 * (a * (-a / b).acos() + (b * b - a * a).sqrt())
+            };
+            self.profile(beta) * beta.sin() * psi
+        };
+        let (lo, hi) = (
+            (self.beta0 - 10.0 * self.w).max(0.0),
+            (self.beta0 + 10.0 * self.w).min(PI),
+        );
+        common::integrate(g, lo, hi, 80, 24)
+    }
+}
+impl Brdf<f64, 1> for Ring {
+    fn eval(&self, wi: Vec3<f64>, wo: Vec3<f64>) -> [f64; 1] {
+        if !upper(wi, wo) {
+            return [0.0];
+        }
+        [self.profile(self.c.dot(wi).clamp(-1.0, 1.0).acos())]
+    }
+    fn properties(&self) -> Properties {
+        RECIPROCAL
+    }
+}
+
+#[test]
+fn thin_cone_lobes_need_and_get_the_thorough_setting() {
+    // Rings 60° about a tangent axis and about a tilted one, 0.01 and 0.003 rad wide: ridges
+    // across the (θm, φm) domain that DEFAULT's initial nodes can step over; THOROUGH's
+    // denser initial panels see them.
+    let cfg = AlbedoConfig::THOROUGH;
+    let mut worst = 0.0f64;
+    for c in [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.6, 0.0, 0.8)] {
+        for w in [1e-2, 3e-3] {
+            let ring = Ring {
+                c,
+                beta0: PI / 3.0,
+                w,
+            };
+            let reference = ring.reference();
+            for (mu, phi) in [(1.0, 0.0), (0.5, 2.5), (1e-3, 1.0)] {
+                let e = directional_albedo_estimate(&ring, dir(mu, phi), &cfg);
+                let err = (e.value[0] - reference).abs();
+                worst = worst.max(err);
+                assert!(err < 1e-5, "c {c:?} w {w} mu {mu}: {e:?} vs {reference}");
+            }
+        }
+    }
+    println!("thin cone lobes (THOROUGH) worst error {worst:e}");
+}
+
+#[test]
+fn thorough_setting_integrates_a_jump_to_the_requirement() {
+    let mut worst = 0.0f64;
+    for (mu, phi) in [(0.6, 1.0), (0.1, 3.0), (1e-4, 0.0)] {
+        let e = directional_albedo_estimate(&HalfSpace, dir(mu, phi), &AlbedoConfig::THOROUGH);
+        worst = worst.max((e.value[0] - 1.0).abs());
+        assert!((e.value[0] - 1.0).abs() < 1e-4, "mu {mu} phi {phi}: {e:?}");
+    }
+    println!("half-space (THOROUGH) worst error {worst:e}");
+}
+
 #[test]
 fn an_exhausted_budget_is_reported_in_the_error_estimate() {
     let cfg = AlbedoConfig {
         tolerance: 1e-9,
         max_panels_theta: 2,
         max_panels_phi: 2,
+        ..AlbedoConfig::DEFAULT
     };
     let lobe = CosineLobe {
         n: 1e4,

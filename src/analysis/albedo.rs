@@ -23,6 +23,14 @@ pub struct AlbedoConfig {
     pub max_panels_theta: usize,
     /// Panel budget of each inner integral over `φm` (clamped to `1..=128`; default 32).
     pub max_panels_phi: usize,
+    /// Extra equal-width initial panels over the `θm` range (clamped to `1..=100`; default 1,
+    /// i.e. only the special edges). Raise it, with [`min_panels_phi`](Self::min_panels_phi),
+    /// for thin ridge-like lobes away from the special directions (e.g. a Kajiya-Kay cone
+    /// narrower than 0.03 rad): initial nodes must be closer than the lobe width to see it.
+    pub min_panels_theta: usize,
+    /// Initial equal-width panels on each side of `φo` in the inner integrals (clamped to
+    /// `1..=64`; default 2).
+    pub min_panels_phi: usize,
 }
 
 impl AlbedoConfig {
@@ -33,6 +41,8 @@ impl AlbedoConfig {
         tolerance: 1e-6,
         max_panels_theta: 64,
         max_panels_phi: 32,
+        min_panels_theta: 1,
+        min_panels_phi: 2,
     };
 
     /// A cheaper setting for property tests: `tolerance = 1e-4`, 48 × 24 panels (measured
@@ -41,6 +51,19 @@ impl AlbedoConfig {
         tolerance: 1e-4,
         max_panels_theta: 48,
         max_panels_phi: 24,
+        min_panels_theta: 1,
+        min_panels_phi: 2,
+    };
+
+    /// For thin ridge-like lobes (cones, lobes narrower than 0.03 rad away from the mirror,
+    /// normal and retro directions): 24 initial `θm` panels, 16 initial `φm` panels per side
+    /// and the largest budgets.
+    pub const THOROUGH: Self = Self {
+        tolerance: 1e-6,
+        max_panels_theta: 128,
+        max_panels_phi: 128,
+        min_panels_theta: 24,
+        min_panels_phi: 16,
     };
 
     /// `DEFAULT` with another tolerance.
@@ -153,7 +176,8 @@ where
 /// (`wi = n`), `θm = θo` (retro-reflection `wi = wo`), `φm = φo` (plane of incidence), and
 /// at the kinks of `Δ(θm)`. Gauss–Kronrod nodes cluster at panel edges, so lobes centred on
 /// these directions are found at any sharpness; other lobes are found when some node sees
-/// them (width ≳ 0.01 rad), then refined adaptively.
+/// them (width ≳ 0.03 rad with `DEFAULT`, ≳ 0.003 rad with `THOROUGH`), then refined
+/// adaptively.
 ///
 /// **Accuracy.** The error estimate `max_c |K15 − G7|` (plus propagated inner errors) is
 /// driven below `cfg.tolerance`. Measured against closed forms (tests/analysis.rs) with the
@@ -161,8 +185,9 @@ where
 /// lobes up to exponent 10⁴ about the normal, mirror or retro direction at `cos θo` down to
 /// 1e-4 within 1.1e-6; Blinn-Phong up to s = 10⁴ and GGX/Beckmann down to α = 10⁻³ at
 /// normal incidence within 2e-11, and GGX/Beckmann with α = 10⁻³ at `cos θo` down to 1e-4
-/// within 1.5e-7. A jump discontinuity inside the hemisphere is integrated
-/// to about 1e-3 only (see the [module docs](super)). Results are deterministic.
+/// within 1.5e-7. Thin features away from those directions (cone lobes narrower than
+/// 0.03 rad, jump discontinuities) need [`AlbedoConfig::THOROUGH`] (see the
+/// [module docs](super)). Results are deterministic.
 ///
 /// **Cost.** 4.5·10³ (Lambert) to 6·10⁴ (sharp lobes off the mirror direction) BRDF
 /// evaluations, 0.1–4.5 ms in release for a cheap BRDF; bounded by
@@ -208,7 +233,7 @@ where
     let theta_max = FRAC_PI_4 + 0.5 * theta_o;
 
     // Initial panel edges in θm.
-    let mut breaks = [0.0f64; 10];
+    let mut breaks = [0.0f64; 9 + 101];
     let candidates = [
         0.0,
         1e-4,
@@ -227,6 +252,11 @@ where
             n += 1;
         }
     }
+    let extra = cfg.min_panels_theta.clamp(1, 100);
+    for k in 1..extra {
+        breaks[n] = theta_max * k as f64 / extra as f64;
+        n += 1;
+    }
     let breaks = &mut breaks[..n];
     breaks.sort_unstable_by(f64::total_cmp);
     let mut m = 1;
@@ -240,6 +270,7 @@ where
 
     let inner_tol = 0.25 * cfg.tolerance / theta_max;
     let max_phi = cfg.max_panels_phi.clamp(1, MAX_PANELS);
+    let per_side = cfg.min_panels_phi.clamp(1, 64);
     adaptive(
         |theta_m| {
             let (s_m, c_m) = (f64m::sin(theta_m), f64m::cos(theta_m));
@@ -256,6 +287,12 @@ where
             };
             if delta.is_nan() || delta <= 0.0 || c_m <= 0.0 {
                 return Quad::ZERO;
+            }
+            // Equal panels on each side of φo (at least two by default: a narrow sliver of a
+            // feature cut by this θm line is then still seen by some node).
+            let mut inner = [0.0f64; 129];
+            for (k, b) in inner[..2 * per_side + 1].iter_mut().enumerate() {
+                *b = delta * (k as f64 - per_side as f64) / per_side as f64;
             }
             adaptive(
                 |d| {
@@ -280,9 +317,7 @@ where
                         evaluations: 1,
                     }
                 },
-                // Two panels per side: a narrow sliver of a feature cut by this θm line is
-                // still seen by some node (a single panel can miss it entirely).
-                &[-delta, -0.5 * delta, 0.0, 0.5 * delta, delta],
+                &inner[..2 * per_side + 1],
                 inner_tol,
                 max_phi,
             )

@@ -36,13 +36,16 @@
 //! | GGX / Beckmann `D/(4 cos θi cos θo)`, α ≥ 10⁻³ (closed form) | 1 | 2.1e-11 |
 //! | The same, α ∈ {10⁻³, 10⁻², 0.3} (independent 1D reference; error relative to `max(1, ρ)`, as `ρ` reaches 10³ at grazing with G = 1) | 1 … 1e-4 | 1.5e-7 |
 //! | A jump discontinuity (`f = 2/π` on `wi.x > 0`) | 1 … 1e-4 | 3.3e-4 |
+//! | The jump with [`AlbedoConfig::THOROUGH`] | 0.6 … 1e-4 | 1.3e-6 |
+//! | Ring (Kajiya-Kay-like cone) lobes 0.01 and 0.003 rad wide, with `THOROUGH` | 1 … 1e-3 | 2.5e-9 |
 //!
-//! So continuous BRDFs meet 1e-4 with two orders of margin; a BRDF with a jump (a hard
-//! cut-off inside the hemisphere) is within about 1e-3, because where the jump curve is
-//! tangent to a `θm` line the inner integrals see slivers thinner than their node spacing.
-//! A lobe is resolved at any sharpness when it is centred on the mirror direction, the
-//! normal or the retro-reflection direction; lobes elsewhere are found when they are wider
-//! than about 0.01 rad, then refined adaptively.
+//! So continuous lobes meet 1e-4 with two orders of margin under `DEFAULT` when they are
+//! centred on the mirror direction, the normal or the retro-reflection direction (at any
+//! sharpness), or are wider than about 0.03 rad wherever they are. Thin features elsewhere —
+//! cone (ridge) lobes narrower than 0.03 rad, jump discontinuities — can fall between the
+//! initial nodes of `DEFAULT` (a 0.01-rad ring was off by 10 %, a jump by 3.3e-4); use
+//! [`AlbedoConfig::THOROUGH`] (denser initial panels, ≈ 2.5·10⁵–6·10⁵ evaluations) for
+//! them. No deterministic black-box rule can see a lobe narrower than its node spacing.
 //!
 //! Cost (release build, a cheap analytic BRDF): 4.5·10³–6·10⁴ evaluations, 0.1–4.5 ms per
 //! albedo with `DEFAULT`; 4.5·10³–4.6·10⁴ evaluations with [`AlbedoConfig::FAST`]
