@@ -57,7 +57,8 @@ impl<R: Real> Vec3<R> {
         Self::new(self.x * s, self.y * s, self.z * s)
     }
 
-    /// Component-wise sum.
+    /// Component-wise sum (also available as `+`).
+    #[allow(clippy::should_implement_trait)]
     #[inline(always)]
     #[must_use]
     pub fn add(self, o: Self) -> Self {
@@ -80,6 +81,30 @@ impl<R: Real> Vec3<R> {
     pub fn reflect(self, n: Self) -> Self {
         n.scale(R::from_f64(2.0) * self.dot(n))
             .add(self.scale(-R::one()))
+    }
+}
+
+impl<R: Real> core::ops::Add for Vec3<R> {
+    type Output = Self;
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Vec3::add(self, o)
+    }
+}
+
+impl<R: Real> core::ops::Sub for Vec3<R> {
+    type Output = Self;
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        Self::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+impl<R: Real> core::ops::Neg for Vec3<R> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Self::new(-self.x, -self.y, -self.z)
     }
 }
 

@@ -1,8 +1,6 @@
 //! Tests of the lane trait itself and of the test support.
 mod common;
 
-use brdf::Real;
-
 #[test]
 fn lane_primitives_match_scalar() {
     let rows: Vec<[f64; 2]> = (0..97)
