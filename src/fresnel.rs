@@ -789,7 +789,7 @@ impl<R: Real, const N: usize> Schlick<R, N> {
 }
 
 impl<R: Real, const N: usize> FresnelTerm<R, N> for Schlick<R, N> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
         let w = schlick_weight(cos_theta_d);
         core::array::from_fn(|i| (self.f90[i] - self.f0[i]).mul_add(w, self.f0[i]))
@@ -837,7 +837,7 @@ impl<R: Real> Dielectric<R> {
 }
 
 impl<R: Real, const N: usize> FresnelTerm<R, N> for Dielectric<R> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
         [dielectric(cos_theta_d, self.eta); N]
     }
@@ -928,7 +928,7 @@ impl<R: Real> Conductor<R, 3> {
 }
 
 impl<R: Real, const N: usize> FresnelTerm<R, N> for Conductor<R, N> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
         core::array::from_fn(|i| conductor(cos_theta_d, self.eta[i], self.k[i]))
     }
@@ -1012,7 +1012,7 @@ impl<R: Real> F82Tint<R, 3> {
 }
 
 impl<R: Real, const N: usize> FresnelTerm<R, N> for F82Tint<R, N> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
         core::array::from_fn(|i| f82_tint_with_b(self.f0[i], self.b[i], cos_theta_d))
     }
@@ -1029,7 +1029,7 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for F82Tint<R, N> {
 pub struct NoFresnel;
 
 impl<R: Real, const N: usize> FresnelTerm<R, N> for NoFresnel {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, _cos_theta_d: R) -> [R; N] {
         [R::one(); N]
     }

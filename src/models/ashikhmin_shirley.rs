@@ -89,7 +89,7 @@ impl<R: Real, const N: usize> AshikhminShirley<R, N> {
 }
 
 impl<R: Real, const N: usize> Brdf<R, N> for AshikhminShirley<R, N> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let (h, cos_d) = half_and_cos_d(wi, wo);

@@ -124,7 +124,7 @@ impl<R: Real, const N: usize> BlinnPhongClassic<R, N> {
 }
 
 impl<R: Real, const N: usize> Brdf<R, N> for BlinnPhongClassic<R, N> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let inv_cos_i = wi.z.max(R::from_f64(DENOM_FLOOR)).recip();
@@ -252,7 +252,7 @@ impl<R: Real, const N: usize, V: SpecularDenominator> NormalizedBlinnPhongSpecul
 impl<R: Real, const N: usize, V: SpecularDenominator> Brdf<R, N>
     for NormalizedBlinnPhongSpecular<R, N, V>
 {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let (wm, cos_d) = half_and_cos_d(wi, wo);
@@ -333,7 +333,7 @@ impl<R: Real, const N: usize> CoupledLambert<R, N> {
 }
 
 impl<R: Real, const N: usize> Brdf<R, N> for CoupledLambert<R, N> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, _) = safe_dirs(wi, wo);
         let f = schlick_channels(&self.f0, wi.z);
@@ -414,7 +414,7 @@ impl<R: Real, const N: usize, V: SpecularDenominator> NormalizedBlinnPhong<R, N,
 }
 
 impl<R: Real, const N: usize, V: SpecularDenominator> Brdf<R, N> for NormalizedBlinnPhong<R, N, V> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let d = self.diffuse.eval(wi, wo);
         let s = self.specular.eval(wi, wo);

@@ -152,7 +152,7 @@ impl<R: Real, const N: usize> KajiyaKay<R, N> {
 }
 
 impl<R: Real, const N: usize> Brdf<R, N> for KajiyaKay<R, N> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let (ci, co) = (self.t.dot(wi), self.t.dot(wo));

@@ -159,7 +159,7 @@ impl<R: Real, const N: usize, const K: usize> Lafortune<R, N, K> {
 }
 
 impl<R: Real, const N: usize, const K: usize> Brdf<R, N> for Lafortune<R, N, K> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let (px, py, pz) = (wi.x * wo.x, wi.y * wo.y, wi.z * wo.z);

@@ -46,7 +46,7 @@ impl<R: Real, const N: usize> Lambert<R, N> {
 }
 
 impl<R: Real, const N: usize> Brdf<R, N> for Lambert<R, N> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         masked(upper(wi, wo), self.albedo_over_pi)
     }

@@ -52,7 +52,7 @@ fn both_reciprocal(a: Properties, b: Properties) -> Reciprocity {
 }
 
 impl<R: Real, const N: usize, A: Brdf<R, N>, B: Brdf<R, N>> Brdf<R, N> for Sum<A, B> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (a, b) = (self.a.eval(wi, wo), self.b.eval(wi, wo));
         core::array::from_fn(|c| a[c] + b[c])
@@ -125,7 +125,7 @@ where
     S: Brdf<R, N>,
     F: FresnelTerm<R, N>,
 {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, swi, swo) = safe_dirs(wi, wo);
         let (fi, fo) = (self.fresnel.eval(swi.z), self.fresnel.eval(swo.z));

@@ -69,7 +69,7 @@ impl<R: Real, const N: usize> OrenNayar<R, N> {
 }
 
 impl<R: Real, const N: usize> Brdf<R, N> for OrenNayar<R, N> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let proj = wi.x.mul_add(wo.x, wi.y * wo.y).max(R::zero());

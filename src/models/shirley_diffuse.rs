@@ -72,7 +72,7 @@ impl<R: Real, const N: usize> ShirleyDiffuse<R, N> {
 }
 
 impl<R: Real, const N: usize> Brdf<R, N> for ShirleyDiffuse<R, N> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let t = (R::one() - schlick_weight(wi.z)) * (R::one() - schlick_weight(wo.z));

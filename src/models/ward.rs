@@ -144,7 +144,7 @@ impl<R: Real, const N: usize, K: WardNormalization> Ward<R, N, K> {
 }
 
 impl<R: Real, const N: usize, K: WardNormalization> Brdf<R, N> for Ward<R, N, K> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let h = wi.add(wo);
