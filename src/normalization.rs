@@ -277,12 +277,13 @@ pub fn tri_ace_exact_offset<R: Real>(s: R) -> R {
 /// Gotanda's SIGGRAPH 2010 course notes give these constants for that model (the
 /// `max(N·L, N·V)` denominator is the geometric term of Neumann, Neumann and
 /// Szirmay-Kalos, "Compact Metallic Reflectance Models", Eurographics 1999); the notes do
-/// not state the fitted range, and the crate does not re-derive them. Relative to the seed's exact
-/// [`tri_ace_exact`] it is −46 % at `s = 0`, −10 % at `s = 4`, +0.57 % at its peak near
-/// `s ≈ 17.5`, −0.05 % at `s = 256`, −0.10 % at `s = 1024`, and tends to −0.113 % (its slope
-/// `0.0397436` is 0.113 % below the exact `1/(8π)`). At normal viewing (`V = N`, so `max(N·L, N·V) = 1`) the model's
-/// directional albedo with `F = 1` is `c(s)/`[`blinn_phong_cosine_exact`]`(s)`: 0.27 at
-/// `s = 0`, 0.81 at `s = 16`, 0.98 at `s = 256` — always below 1.
+/// not state the fitted range, and the crate does not re-derive them. Relative to the
+/// seed's exact [`tri_ace_exact`] it is −46 % at `s = 0`, −10 % at `s = 4`, +0.57 % at its
+/// peak near `s ≈ 17.5`, −0.05 % at `s = 256`, −0.10 % at `s = 1024`, and tends to
+/// −0.113 % (its slope `0.0397436` is 0.113 % below the exact `1/(8π)`). At normal viewing
+/// (`V = N`, so `max(N·L, N·V) = 1`) the model's directional albedo with `F = 1` is
+/// `c(s)/`[`blinn_phong_cosine_exact`]`(s)`: 0.27 at `s = 0`, 0.81 at `s = 16`, 0.98 at
+/// `s = 256` — always below 1.
 ///
 /// Domain: `s ∈ [0, ∞)`.
 ///

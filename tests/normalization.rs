@@ -832,3 +832,29 @@ fn least_squares_offset_over_0_to_221_is_also_2_04() {
     let mean = common::integrate_pieces(tri_ace_exact_offset, &breaks, 4, 16) / s_max;
     assert!((mean - TRI_ACE_OFFSET).abs() < 1e-3, "{mean}");
 }
+
+#[test]
+fn tri_ace_2010_fit_against_the_exact_factor() {
+    // Documented comparison (values from an independent evaluation of the closed forms).
+    let r = |s: f64| tri_ace_2010_fit(s) / tri_ace_exact(s) - 1.0;
+    assert!((r(0.0) + 0.4616).abs() < 1e-4, "{}", r(0.0));
+    assert!((r(4.0) + 0.1033).abs() < 1e-4, "{}", r(4.0));
+    assert!((r(256.0) + 5.308e-4).abs() < 1e-6, "{}", r(256.0));
+    assert!((r(1e9) - (0.0397436 * 8.0 * PI - 1.0)).abs() < 1e-8);
+    let peak = (1..4000)
+        .map(|i| i as f64 * 0.01)
+        .map(|s| (r(s), s))
+        .fold((-1.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
+    assert!(
+        (peak.0 - 5.68e-3).abs() < 1e-5 && (peak.1 - 17.46).abs() < 0.05,
+        "{peak:?}"
+    );
+    // Normal-viewing albedo of F (N·H)^s / max(N·L, N·V) with this factor stays below 1.
+    let mut s = 0.0;
+    while s < 1e9 {
+        let albedo = tri_ace_2010_fit(s) / blinn_phong_cosine_exact(s);
+        assert!(albedo < 1.0 && albedo > 0.26, "s = {s}: {albedo}");
+        s = s * 1.1 + 0.01;
+    }
+    assert!((tri_ace_2010_fit(16.0f64) / blinn_phong_cosine_exact(16.0) - 0.8062).abs() < 1e-4);
+}
