@@ -91,10 +91,11 @@ pub trait Masking<R: Real, D: Ndf<R>> {
 
     /// The visibility term `V = G2 / (4 cos θi cos θo)` in sr⁻¹·(sr) — what a Cook-Torrance
     /// body multiplies by `D·F`. Terms with a cheaper direct form of `V` override this.
-    /// Domain: `wi.z > 0`, `wo.z > 0`.
+    /// Domain: `wi.z ≥ 0`, `wo.z ≥ 0`; the default body floors the denominator at `1e-30`, so
+    /// it is finite (if large) at exactly grazing angles.
     #[inline(always)]
     fn visibility(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
-        self.g2(ndf, wi, wo, wm) / (R::from_f64(4.0) * wi.z * wo.z)
+        self.g2(ndf, wi, wo, wm) / (R::from_f64(4.0) * wi.z * wo.z).max(R::from_f64(1e-30))
     }
 }
 
@@ -152,8 +153,7 @@ impl<R: Real, D: SmithLambda<R>> Masking<R, D> for SmithHeightCorrelated {
 
     #[inline(always)]
     fn visibility(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
-        let (ci, co) = (cos_clamped(wi), cos_clamped(wo));
-        let den = ci * co + co * ndf.cos_lambda(wi) + ci * ndf.cos_lambda(wo);
+        let den = ndf.height_correlated_den(wi, wo);
         let v = (R::from_f64(4.0) * den).max(tiny()).recip();
         R::select(front(wi, wo, wm), v, R::zero())
     }
@@ -194,8 +194,7 @@ impl<R: Real, D: SmithLambda<R>> Masking<R, D> for SmithSeparable {
 
     #[inline(always)]
     fn visibility(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
-        let gi = cos_clamped(wi) + ndf.cos_lambda(wi);
-        let go = cos_clamped(wo) + ndf.cos_lambda(wo);
+        let (gi, go) = (ndf.separable_den(wi), ndf.separable_den(wo));
         let v = (R::from_f64(4.0) * gi * go).max(tiny()).recip();
         R::select(front(wi, wo, wm), v, R::zero())
     }

@@ -101,6 +101,33 @@ pub trait SmithLambda<R: Real>: Ndf<R> {
     fn g1(&self, w: Vec3<R>) -> R {
         (R::one() + self.lambda(w)).recip()
     }
+
+    /// `cos θi cos θo (1 + Λ(wi) + Λ(wo))`, the denominator of the height-correlated
+    /// visibility `V = 1/(4·den)`, for `wi`, `wo` in the upper hemisphere (cosines clamped at 0).
+    ///
+    /// ```text
+    /// den = cos θi cos θo + cos θo·cosΛ(wi) + cos θi·cosΛ(wo)
+    /// ```
+    ///
+    /// The default body is that sum; [`Ggx`] overrides it with the algebraically equal
+    /// `(cos θo √(cos²θi + sᵢ) + cos θi √(cos²θo + sₒ))/2`, `s = x²αx² + y²αy²`, which needs no
+    /// division (the `cos θ·cos θ` terms cancel exactly) — two square roots instead of two
+    /// square roots and two divisions on the hottest path of a GGX Cook-Torrance.
+    #[inline(always)]
+    fn height_correlated_den(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
+        let (ci, co) = (wi.z.max(R::zero()), wo.z.max(R::zero()));
+        ci * co + co * self.cos_lambda(wi) + ci * self.cos_lambda(wo)
+    }
+
+    /// `cos θ (1 + Λ(w)) = cos θ / G1(w)` for `w` in the upper hemisphere (cosine clamped at
+    /// 0): one factor of the separable visibility `V = 1/(4·den(wi)·den(wo))`.
+    ///
+    /// The default body is `cos θ + cosΛ(w)`; [`Ggx`] overrides it with the algebraically
+    /// equal, division-free `(cos θ + √(cos²θ + s))/2`, `s = x²αx² + y²αy²`.
+    #[inline(always)]
+    fn separable_den(&self, w: Vec3<R>) -> R {
+        w.z.max(R::zero()) + self.cos_lambda(w)
+    }
 }
 
 /// An NDF that can report the isotropic slope parameter `alpha` seen from direction `w`
@@ -328,6 +355,24 @@ impl<R: Real> SmithLambda<R> for Ggx<R> {
         let s = self.stretched_sin2(w);
         let c = w.z.abs();
         s / (R::from_f64(2.0) * ((c * c + s).sqrt() + c)).max(tiny())
+    }
+
+    /// `(cos θo √(cos²θi + sᵢ) + cos θi √(cos²θo + sₒ))/2`: see
+    /// [`SmithLambda::height_correlated_den`] (Heitz 2014's height-correlated G2 with GGX's
+    /// `Λ = (√(1 + α² tan²θ) − 1)/2`; the division-free form is the one in Filament's docs).
+    #[inline(always)]
+    fn height_correlated_den(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
+        let (ci, co) = (wi.z.max(R::zero()), wo.z.max(R::zero()));
+        let root_i = (wi.z * wi.z + self.stretched_sin2(wi)).sqrt();
+        let root_o = (wo.z * wo.z + self.stretched_sin2(wo)).sqrt();
+        (co * root_i + ci * root_o) * R::from_f64(0.5)
+    }
+
+    /// `(cos θ + √(cos²θ + s))/2`: see [`SmithLambda::separable_den`].
+    #[inline(always)]
+    fn separable_den(&self, w: Vec3<R>) -> R {
+        let c = w.z.max(R::zero());
+        (c + (w.z * w.z + self.stretched_sin2(w)).sqrt()) * R::from_f64(0.5)
     }
 }
 

@@ -97,9 +97,13 @@ pub trait Real:
     fn sqrt(self) -> Self;
     /// Absolute value.
     fn abs(self) -> Self;
-    /// Lane-wise minimum.
+    /// Lane-wise minimum: `if self < other { self } else { other }` — one `minss`/`minps`
+    /// instruction on x86. If either operand is NaN the result is `other` (so
+    /// `x.min(c)` with a constant `c` maps a NaN `x` to `c`), unlike `f32::min`.
     fn min(self, other: Self) -> Self;
-    /// Lane-wise maximum.
+    /// Lane-wise maximum: `if self > other { self } else { other }` — one `maxss`/`maxps`
+    /// instruction on x86. If either operand is NaN the result is `other` (so
+    /// `x.max(0)` maps a NaN `x` to 0), unlike `f32::max`.
     fn max(self, other: Self) -> Self;
     /// `self·a + b`, fused when the build has hardware FMA (see the module docs).
     fn mul_add(self, a: Self, b: Self) -> Self;
@@ -277,11 +281,11 @@ macro_rules! impl_scalar {
             }
             #[inline(always)]
             fn min(self, other: Self) -> Self {
-                <$t>::min(self, other)
+                if self < other { self } else { other }
             }
             #[inline(always)]
             fn max(self, other: Self) -> Self {
-                <$t>::max(self, other)
+                if self > other { self } else { other }
             }
             #[inline(always)]
             fn mul_add(self, a: Self, b: Self) -> Self {
@@ -448,11 +452,11 @@ macro_rules! impl_lanes {
             }
             #[inline(always)]
             fn min(self, other: Self) -> Self {
-                <$v>::min(self, other)
+                <$v>::fast_min(self, other)
             }
             #[inline(always)]
             fn max(self, other: Self) -> Self {
-                <$v>::max(self, other)
+                <$v>::fast_max(self, other)
             }
             #[inline(always)]
             fn mul_add(self, a: Self, b: Self) -> Self {
@@ -604,6 +608,25 @@ mod tests {
             assert_eq!(v.lane(i), body(x), "lane {i}");
         }
         assert_eq!(body(-3.0f64), 3.0);
+    }
+
+    #[test]
+    fn min_max_return_other_on_nan_on_every_type() {
+        assert_eq!(Real::max(f32::NAN, 0.0f32), 0.0);
+        assert_eq!(Real::max(f64::NAN, 1.0f64), 1.0);
+        assert_eq!(Real::min(f32::NAN, 1.0f32), 1.0);
+        assert_eq!(
+            Real::max(f32x8::splat(f32::NAN), f32x8::splat(0.0)).lane(3),
+            0.0
+        );
+        assert_eq!(
+            Real::min(f64x4::splat(f64::NAN), f64x4::splat(2.0)).lane(1),
+            2.0
+        );
+        assert_eq!(
+            Real::max(f32x16::splat(-1.0), f32x16::splat(3.0)).lane(9),
+            3.0
+        );
     }
 
     #[test]
