@@ -62,6 +62,8 @@ pub mod fast;
 pub mod fresnel;
 pub mod ior;
 pub mod masking;
+#[cfg(feature = "serde")]
+pub mod material;
 pub mod models;
 pub mod ndf;
 pub mod normalization;

@@ -77,9 +77,9 @@ pub struct AlbedoTable {
     values: Vec<[f32; 3]>,
 }
 
-const THETA: usize = 48;
+const THETA: usize = 40;
 const THETA_MAX: f64 = 89.5 * core::f64::consts::PI / 180.0;
-const PHI: usize = 7;
+const PHI: usize = 5;
 
 /// Evaluates an `f32` BRDF from the `f64` integrator.
 struct Widen<'a, B>(&'a B);
@@ -98,7 +98,7 @@ impl AlbedoTable {
     /// Tabulates `ρ(wo)` of `brdf`; `anisotropic` adds the `φo` axis.
     pub fn new<B: Brdf<f32, 3>>(brdf: &B, anisotropic: bool) -> Self {
         let phi_nodes = if anisotropic { PHI } else { 1 };
-        let cfg = AlbedoConfig::with_tolerance(1e-5);
+        let cfg = AlbedoConfig::with_tolerance(1e-4);
         let mut values = Vec::with_capacity(THETA * phi_nodes);
         for t in 0..THETA {
             let theta = THETA_MAX * t as f64 / (THETA - 1) as f64;
@@ -252,7 +252,7 @@ pub struct Row {
 pub struct Grid {
     /// First line of the header.
     pub title: String,
-    /// Second line of the header (parameters, lighting, tone mapping).
+    /// Further header lines, separated by `\n` (parameters, lighting).
     pub subtitle: String,
     /// The rows, top first.
     pub rows: Vec<Row>,
@@ -260,7 +260,6 @@ pub struct Grid {
 
 const GAP: usize = 10;
 const CAPTION: usize = 20;
-const HEADER: usize = 50;
 
 /// Lays the grid out on a background of radiance `background`, encodes it for display and
 /// draws the captions.
@@ -281,8 +280,10 @@ pub fn compose(
     let left = if has_row_labels { 170 } else { GAP };
     let cell_w = size + GAP;
     let cell_h = size + CAPTION + GAP;
+    let sub_lines: Vec<&str> = grid.subtitle.split('\n').collect();
+    let header = 34 + 15 * sub_lines.len();
     let width = (left + cols * cell_w).max(520);
-    let height = HEADER + grid.rows.len() * cell_h;
+    let height = header + grid.rows.len() * cell_h;
     let mut pixmap = resvg::tiny_skia::Pixmap::new(width as u32, height as u32).expect("size");
     let bg = display.encode(background);
     let put = |data: &mut [u8], x: usize, y: usize, c: [u8; 3]| {
@@ -298,7 +299,7 @@ pub fn compose(
         }
         for (ri, row) in grid.rows.iter().enumerate() {
             for (ci, cell) in row.cells.iter().enumerate() {
-                let (x0, y0) = (left + ci * cell_w, HEADER + ri * cell_h);
+                let (x0, y0) = (left + ci * cell_w, header + ri * cell_h);
                 let s = cell.image.size;
                 for y in 0..s {
                     for x in 0..s {
@@ -328,12 +329,15 @@ pub fn compose(
         r#"<text x="{GAP}" y="21" font-size="16" font-weight="bold" fill="{ink}">{}</text>"#,
         esc(&grid.title)
     );
-    svg += &format!(
-        r#"<text x="{GAP}" y="40" font-size="11.5" fill="{faint}">{}</text>"#,
-        esc(&grid.subtitle)
-    );
+    for (i, line) in sub_lines.iter().enumerate() {
+        svg += &format!(
+            r#"<text x="{GAP}" y="{}" font-size="11.5" fill="{faint}">{}</text>"#,
+            40 + 15 * i,
+            esc(line)
+        );
+    }
     for (ri, row) in grid.rows.iter().enumerate() {
-        let y0 = HEADER + ri * cell_h;
+        let y0 = header + ri * cell_h;
         let lines: Vec<&str> = row.label.split('\n').collect();
         let first = y0 + size / 2 + 5 - (lines.len() - 1) * 8;
         for (li, line) in lines.iter().enumerate() {
