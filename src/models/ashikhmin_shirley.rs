@@ -98,12 +98,11 @@ impl<R: Real, const N: usize> Brdf<R, N> for AshikhminShirley<R, N> {
         let e = self.nu.mul_add(hx2, self.nv * hy2) / sin2;
         let den = (cos_d * wi.z.max(wo.z)).max(R::from_f64(DENOM_FLOOR));
         let lobe = self.spec_k * h.z.saturate().pow(e) / den;
-        let w = schlick_weight(cos_d);
         let half = R::from_f64(0.5);
         let di = R::one() - schlick_weight(wi.z * half);
         let dd = di * (R::one() - schlick_weight(wo.z * half));
-        let r: [R; N] = core::array::from_fn(|c| {
-            let f = (R::one() - self.rs[c]).mul_add(w, self.rs[c]);
+        let r: [R; N] = crate::real::channels(|c| {
+            let f = crate::fresnel::schlick(self.rs[c], cos_d);
             lobe.mul_add(f, self.diffuse_k[c] * dd)
         });
         masked(m, r)

@@ -23,7 +23,7 @@ use core::marker::PhantomData;
 
 use super::{
     Brdf, DENOM_FLOOR, Energy, Properties, Reciprocity, half_and_cos_d, masked, safe_dirs,
-    schlick_weight, splat_channels, unit_channels,
+    splat_channels, unit_channels,
 };
 use crate::normalization::{Normalization, TRI_ACE_OFFSET};
 use crate::{Error, Real, Scalar, Vec3};
@@ -34,11 +34,10 @@ fn shininess_of<S: Scalar>(s: S) -> Result<f64, Error> {
     Ok(crate::error::non_negative("shininess", s)?.into())
 }
 
-/// `F0 + (1 − F0)(1 − c)⁵` per channel (Schlick 1994).
+/// `F0 + (1 − F0)(1 − c)⁵` per channel ([`crate::fresnel::schlick`]).
 #[inline(always)]
 fn schlick_channels<R: Real, const N: usize>(f0: &[R; N], c: R) -> [R; N] {
-    let w = schlick_weight(c);
-    f0.map(|f0| f0 + (R::one() - f0) * w)
+    crate::real::channels(|i| crate::fresnel::schlick(f0[i], c))
 }
 
 /// Blinn-Phong as games wrote it before physically based shading, expressed as a BRDF.
@@ -108,7 +107,10 @@ impl<R: Real, const N: usize> BlinnPhongClassic<R, N> {
     fn specular_out(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (wm, cos_d) = half_and_cos_d(wi, wo);
         let lobe = self.rs * wm.z.saturate().pow(self.shininess);
-        schlick_channels(&self.f0, cos_d).map(|f| f * lobe)
+        {
+            let f = schlick_channels(&self.f0, cos_d);
+            crate::real::channels(|c| f[c] * lobe)
+        }
     }
 
     /// The engine's shading result `Out = R_d (N·L) + R_s F(F0, E·H) (N·H)^s` for a light
@@ -118,7 +120,7 @@ impl<R: Real, const N: usize> BlinnPhongClassic<R, N> {
     pub fn out(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let spec = self.specular_out(wi, wo);
-        let r: [R; N] = core::array::from_fn(|c| self.rd[c].mul_add(wi.z, spec[c]));
+        let r: [R; N] = crate::real::channels(|c| self.rd[c].mul_add(wi.z, spec[c]));
         masked(m, r)
     }
 }
@@ -129,7 +131,7 @@ impl<R: Real, const N: usize> Brdf<R, N> for BlinnPhongClassic<R, N> {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let inv_cos_i = wi.z.max(R::from_f64(DENOM_FLOOR)).recip();
         let spec = self.specular_out(wi, wo);
-        let r: [R; N] = core::array::from_fn(|c| spec[c].mul_add(inv_cos_i, self.rd[c]));
+        let r: [R; N] = crate::real::channels(|c| spec[c].mul_add(inv_cos_i, self.rd[c]));
         masked(m, r)
     }
 
@@ -257,7 +259,10 @@ impl<R: Real, const N: usize, V: SpecularDenominator> Brdf<R, N>
         let (m, wi, wo) = safe_dirs(wi, wo);
         let (wm, cos_d) = half_and_cos_d(wi, wo);
         let lobe = self.rs_c * wm.z.saturate().pow(self.shininess) / V::denom(wi.z, wo.z);
-        masked(m, schlick_channels(&self.f0, cos_d).map(|f| f * lobe))
+        masked(m, {
+            let f = schlick_channels(&self.f0, cos_d);
+            crate::real::channels(|c| f[c] * lobe)
+        })
     }
 
     #[inline]
@@ -338,7 +343,7 @@ impl<R: Real, const N: usize> Brdf<R, N> for CoupledLambert<R, N> {
         let (m, wi, _) = safe_dirs(wi, wo);
         let f = schlick_channels(&self.f0, wi.z);
         let r: [R; N] =
-            core::array::from_fn(|c| self.rd_over_pi[c] * (-self.rs).mul_add(f[c], R::one()));
+            crate::real::channels(|c| self.rd_over_pi[c] * (-self.rs).mul_add(f[c], R::one()));
         masked(m, r)
     }
 
@@ -418,7 +423,7 @@ impl<R: Real, const N: usize, V: SpecularDenominator> Brdf<R, N> for NormalizedB
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let d = self.diffuse.eval(wi, wo);
         let s = self.specular.eval(wi, wo);
-        core::array::from_fn(|c| d[c] + s[c])
+        crate::real::channels(|c| d[c] + s[c])
     }
 
     #[inline]

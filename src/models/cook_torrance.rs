@@ -76,7 +76,7 @@ where
         let (wm, cos_d) = half_and_cos_d(wi, wo);
         let dv = self.ndf.d(wm) * self.masking.visibility(&self.ndf, wi, wo, wm);
         let f = self.fresnel.eval(cos_d);
-        masked(m, f.map(|f| f * dv))
+        masked(m, crate::real::channels(|c| f[c] * dv))
     }
 
     #[inline]

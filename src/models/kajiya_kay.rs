@@ -161,7 +161,7 @@ impl<R: Real, const N: usize> Brdf<R, N> for KajiyaKay<R, N> {
         let cos_phi = si.mul_add(so, -(ci * co)).clamp(R::zero(), R::one());
         let lobe = cos_phi.pow(self.p);
         let r: [R; N] =
-            core::array::from_fn(|c| self.ks_c[c].mul_add(lobe, self.kd_over_pi[c] * si));
+            crate::real::channels(|c| self.ks_c[c].mul_add(lobe, self.kd_over_pi[c] * si));
         masked(m, r)
     }
 

@@ -55,7 +55,7 @@ impl<R: Real, const N: usize, A: Brdf<R, N>, B: Brdf<R, N>> Brdf<R, N> for Sum<A
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (a, b) = (self.a.eval(wi, wo), self.b.eval(wi, wo));
-        core::array::from_fn(|c| a[c] + b[c])
+        crate::real::channels(|c| a[c] + b[c])
     }
 
     #[inline]
@@ -131,7 +131,7 @@ where
         let (fi, fo) = (self.fresnel.eval(swi.z), self.fresnel.eval(swo.z));
         let (d, s) = (self.base.eval(wi, wo), self.coat.eval(wi, wo));
         let r =
-            core::array::from_fn(|c| ((R::one() - fi[c]) * (R::one() - fo[c])).mul_add(d[c], s[c]));
+            crate::real::channels(|c| ((R::one() - fi[c]) * (R::one() - fo[c])).mul_add(d[c], s[c]));
         masked(m, r)
     }
 

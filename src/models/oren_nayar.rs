@@ -76,7 +76,7 @@ impl<R: Real, const N: usize> Brdf<R, N> for OrenNayar<R, N> {
         // Floored: keeps t ≤ 1e20 when both directions graze (B·t stays finite, and
         // 0·t = 0 for σ = 0).
         let t = proj / wi.z.max(wo.z).max(R::from_f64(super::DENOM_FLOOR));
-        let r: [R; N] = core::array::from_fn(|c| self.b[c].mul_add(t, self.a[c]));
+        let r: [R; N] = crate::real::channels(|c| self.b[c].mul_add(t, self.a[c]));
         masked(m, r)
     }
 

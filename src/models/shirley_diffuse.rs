@@ -76,7 +76,7 @@ impl<R: Real, const N: usize> Brdf<R, N> for ShirleyDiffuse<R, N> {
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let t = (R::one() - schlick_weight(wi.z)) * (R::one() - schlick_weight(wo.z));
-        masked(m, self.k.map(|k| k * t))
+        masked(m, crate::real::channels(|c| self.k[c] * t))
     }
 
     #[inline]

@@ -152,7 +152,7 @@ impl<R: Real, const N: usize, K: WardNormalization> Brdf<R, N> for Ward<R, N, K>
         let e = (h.x * h.x).mul_add(self.inv_ax2, h.y * h.y * self.inv_ay2) / hz2;
         let lobe = (-e).exp() * K::prefactor_times_pi_ax_ay(h, wi.z, wo.z);
         let r: [R; N] =
-            core::array::from_fn(|c| self.rho_s_k[c].mul_add(lobe, self.rho_d_over_pi[c]));
+            crate::real::channels(|c| self.rho_s_k[c].mul_add(lobe, self.rho_d_over_pi[c]));
         masked(m, r)
     }
 
