@@ -24,10 +24,10 @@ use crate::{Error, Real, Vec3};
 /// The seed talk's slide of this model matches the paper (JGT 2000, eq. 4 and 5).
 ///
 /// Properties: reciprocal. The specular lobe is normalized so that its albedo stays below
-/// `F ≤ 1` (the paper's §3; checked numerically in the tests with `Rs = 1`: 0.70 at
-/// `n = 10`, rising towards 1 for large `n`); the diffuse term is scaled by `1 − Rs` and
-/// by the Schlick-like factors so that `f_s + f_d` conserves energy (the paper's §4) — the
-/// tests check albedo ≤ 1 over `Rd, Rs ∈ [0, 1]` and `nu, nv ∈ [0, 10⁴]`.
+/// `max F ≤ 1` (the paper's §3), and the diffuse term is scaled by `1 − Rs` and by the
+/// Schlick-like factors so that `f_s + f_d` conserves energy (the paper's §4). The tests
+/// check albedo ≤ 1 numerically for `(Rd, Rs) ∈ {(0, 1), (1, 0), (1, 0.05)}`,
+/// `nu, nv ∈ [0, 10⁴]` (isotropic and strongly anisotropic) and `θo` up to 89.99°.
 ///
 /// Domain: `Rd, Rs ∈ [0, 1]` per channel, `nu, nv ∈ [0, 1e6]`.
 ///

@@ -130,8 +130,9 @@ where
         let (m, swi, swo) = safe_dirs(wi, wo);
         let (fi, fo) = (self.fresnel.eval(swi.z), self.fresnel.eval(swo.z));
         let (d, s) = (self.base.eval(wi, wo), self.coat.eval(wi, wo));
-        let r =
-            crate::real::channels(|c| ((R::one() - fi[c]) * (R::one() - fo[c])).mul_add(d[c], s[c]));
+        let r = crate::real::channels(|c| {
+            ((R::one() - fi[c]) * (R::one() - fo[c])).mul_add(d[c], s[c])
+        });
         masked(m, r)
     }
 
