@@ -110,6 +110,11 @@ fn model_benches(c: &mut Criterion) {
         s(0.3)
     )
     .unwrap());
+    bench_model!(c, "oren_nayar_fujii", &p, |s| OrenNayarFujii::<R, 1>::new(
+        [s(0.8)],
+        s(0.5)
+    )
+    .unwrap());
     bench_model!(c, "shirley_diffuse", &p, |s| ShirleyDiffuse::<R, 1>::new(
         [s(0.8)],
         [s(0.04)]

@@ -372,6 +372,10 @@ fn zoo<S: Scalar>(p: &P) -> Zoo<S> {
         "oren_nayar",
         Box::new(OrenNayar::new([s(u[0])], s(u[7] * 1.6)).unwrap()),
     ));
+    z.push((
+        "oren_nayar_fujii",
+        Box::new(OrenNayarFujii::new([s(u[0])], s(u[7])).unwrap()),
+    ));
     let c = |x: f64| s(2.0 * x - 1.0);
     let lobes = [
         LafortuneLobe {
@@ -773,6 +777,18 @@ fn oren_nayar_gains_energy_at_grazing_for_small_sigma() {
     let l = OrenNayar::<f64, 1>::new([1.0], 0.0).unwrap();
     let a = albedo_view(&ch0(&l), wo);
     assert!((a - 1.0).abs() < 1e-6, "{a}");
+}
+
+#[test]
+fn oren_nayar_fujii_albedo_at_most_rho() {
+    for sigma in [0.0, 0.25, 0.5, 1.0] {
+        let m = OrenNayarFujii::<f64, 1>::new([1.0], sigma).unwrap();
+        let (mx, th) = max_albedo(&ch0(&m));
+        assert!(mx <= 1.0 + 1e-9, "FON σ={sigma}: {mx} at {th}");
+        let a0 = albedo_view(&ch0(&m), dir(0.0, 0.0));
+        let a = 1.0 / (1.0 + (0.5 - 2.0 / (3.0 * PI)) * sigma);
+        assert!((a0 - a).abs() < 1e-9, "{a0} vs {a}");
+    }
 }
 
 #[test]

@@ -112,6 +112,21 @@ proptest! {
         prop_assert_eq!(smooth.eval(a, b), l.eval(a, b));
     }
 
+    /// Fujii's Oren-Nayar with angles: s = cos(φi − φo) sin θi sin θo.
+    #[test]
+    fn oren_nayar_fujii_matches_angles((wi, wo) in dir_pair(), sigma in 0.0f64..1.0, rho in 0.0f64..1.0) {
+        let (ti, to) = (wi.z.acos(), wo.z.acos());
+        let dphi = wi.y.atan2(wi.x) - wo.y.atan2(wo.x);
+        let s = dphi.cos() * ti.sin() * to.sin();
+        let t = if s > 0.0 { wi.z.max(wo.z) } else { 1.0 };
+        let a = 1.0 / (1.0 + (0.5 - 2.0 / (3.0 * PI)) * sigma);
+        let expect = rho / PI * a * (1.0 + sigma * s / t);
+        let m = OrenNayarFujii::<f64, 1>::new([rho], sigma).unwrap();
+        prop_assert!((m.eval(wi, wo)[0] - expect).abs() < 1e-12);
+        let l = Lambert::<f64, 1>::new([rho]).unwrap();
+        prop_assert_eq!(OrenNayarFujii::<f64, 1>::new([rho], 0.0).unwrap().eval(wi, wo), l.eval(wi, wo));
+    }
+
     /// Kajiya-Kay with angles from the fibre: cos φ = cos(π − θ(t,wi) − θ(t,wo)).
     #[test]
     fn kajiya_kay_matches_angles((wi, wo) in dir_pair(), p in 0.5f64..500.0, kd in 0.0f64..1.0, ks in 0.0f64..1.0, (tx, ty, tz) in (-1.0f64..1.0, -1.0f64..1.0, 0.1f64..1.0)) {
@@ -288,6 +303,9 @@ fn lanes_diffuse_models() {
     });
     lanes!("oren_nayar", ulp = 2, abs = 0.0, |s, p| {
         OrenNayar::<R, 1>::new([s(p[0])], s(p[7] * 1.6)).unwrap()
+    });
+    lanes!("oren_nayar_fujii", ulp = 2, abs = 0.0, |s, p| {
+        OrenNayarFujii::<R, 1>::new([s(p[0])], s(p[7])).unwrap()
     });
     lanes!("coupled_lambert", ulp = 2, abs = 0.0, |s, p| {
         CoupledLambert::<R, 1>::new([s(p[0])], s(p[1]), [s(p[2])]).unwrap()
