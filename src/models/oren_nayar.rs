@@ -93,7 +93,7 @@ impl<R: Real, const N: usize> Brdf<R, N> for OrenNayar<R, N> {
 }
 
 /// Fujii's improved Oren-Nayar model ("FON"), the single-scattering base of the
-/// energy-preserving Oren-Nayar (EON) of OpenPBR.
+/// energy-preserving Oren-Nayar (EON) of `OpenPBR`.
 ///
 /// ```text
 /// f(wi, wo) = ρ/π · A · (1 + σ s/t),       A = 1 / (1 + (1/2 − 2/(3π)) σ)
@@ -114,7 +114,7 @@ impl<R: Real, const N: usize> Brdf<R, N> for OrenNayar<R, N> {
 ///
 /// References: Y. Fujii, "A tiny improvement of Oren-Nayar reflectance model", 2013
 /// (<https://mimosa-pudica.net/improved-oren-nayar.html>); J. Portsmouth et al., "EON: A
-/// practical energy-preserving rough diffuse BRDF", JCGT 14(1), 2025; OpenPBR Surface 1.1.
+/// practical energy-preserving rough diffuse BRDF", JCGT 14(1), 2025; `OpenPBR` Surface 1.1.
 ///
 /// # Examples
 ///
