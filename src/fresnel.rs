@@ -792,7 +792,7 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Schlick<R, N> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
         let w = schlick_weight(cos_theta_d);
-        core::array::from_fn(|i| (self.f90[i] - self.f0[i]).mul_add(w, self.f0[i]))
+        crate::real::channels(|i| (self.f90[i] - self.f0[i]).mul_add(w, self.f0[i]))
     }
 }
 
@@ -930,7 +930,7 @@ impl<R: Real> Conductor<R, 3> {
 impl<R: Real, const N: usize> FresnelTerm<R, N> for Conductor<R, N> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
-        core::array::from_fn(|i| conductor(cos_theta_d, self.eta[i], self.k[i]))
+        crate::real::channels(|i| conductor(cos_theta_d, self.eta[i], self.k[i]))
     }
 }
 
@@ -1014,7 +1014,7 @@ impl<R: Real> F82Tint<R, 3> {
 impl<R: Real, const N: usize> FresnelTerm<R, N> for F82Tint<R, N> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
-        core::array::from_fn(|i| f82_tint_with_b(self.f0[i], self.b[i], cos_theta_d))
+        crate::real::channels(|i| f82_tint_with_b(self.f0[i], self.b[i], cos_theta_d))
     }
 }
 
