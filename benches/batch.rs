@@ -7,7 +7,10 @@
 //!   check that the generic scalar path costs nothing (ratio ≥ 0.95);
 //! * `rough_conductor`: Mitsuba 3's `roughconductor` workload — isotropic GGX, separable
 //!   Smith G1·G1, exact conductor Fresnel with a complex IOR per RGB channel, times cos θo
-//!   (≥ 450 M evaluations/s).
+//!   (≥ 450 M evaluations/s);
+//! * `normalized_blinn_phong`: the seed's normalized Blinn-Phong, diffuse + specular, one
+//!   channel, with the exact `powf` and with `fast::pow_phong` (|relative error| ≤ 1e-5)
+//!   (≥ 0.7 G evaluations/s).
 use std::hint::black_box;
 
 use brdf::batch::{self, Directions, Isa};
@@ -202,5 +205,71 @@ fn bench_rough_conductor(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench_ggx_schlick, bench_rough_conductor);
+fn bench_normalized_blinn_phong(c: &mut Criterion) {
+    use brdf::fast::{ExactPow, FastPow};
+    use brdf::models::{CosThetaI, NormalizedBlinnPhong};
+    use brdf::normalization::Normalization;
+    let (wi, wo) = (directions(5), directions(13));
+    let mut out = vec![0.0f32; N];
+    let exact = NormalizedBlinnPhong::<f32, 1, CosThetaI, ExactPow>::new(
+        [0.5],
+        0.5,
+        [0.04],
+        64.0,
+        Normalization::TRI_ACE_2009_FIT,
+    )
+    .unwrap();
+    let fast = NormalizedBlinnPhong::<f32, 1, CosThetaI, FastPow>::new(
+        [0.5],
+        0.5,
+        [0.04],
+        64.0,
+        Normalization::TRI_ACE_2009_FIT,
+    )
+    .unwrap();
+    let mut g = c.benchmark_group("batch/normalized_blinn_phong");
+    g.throughput(Throughput::Elements(N as u64));
+    for isa in Isa::ALL.into_iter().filter(|i| i.is_available()) {
+        g.bench_with_input(
+            BenchmarkId::new("exact_pow", format!("{isa:?}")),
+            &isa,
+            |b, &isa| {
+                b.iter(|| {
+                    batch::eval_with(
+                        isa,
+                        black_box(&exact),
+                        Directions::new(&wi[0], &wi[1], &wi[2]),
+                        Directions::new(&wo[0], &wo[1], &wo[2]),
+                        [&mut out],
+                    )
+                    .unwrap()
+                })
+            },
+        );
+        g.bench_with_input(
+            BenchmarkId::new("fast_pow", format!("{isa:?}")),
+            &isa,
+            |b, &isa| {
+                b.iter(|| {
+                    batch::eval_with(
+                        isa,
+                        black_box(&fast),
+                        Directions::new(&wi[0], &wi[1], &wi[2]),
+                        Directions::new(&wo[0], &wo[1], &wo[2]),
+                        [&mut out],
+                    )
+                    .unwrap()
+                })
+            },
+        );
+    }
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    bench_ggx_schlick,
+    bench_rough_conductor,
+    bench_normalized_blinn_phong
+);
 criterion_main!(benches);

@@ -517,12 +517,46 @@ pub fn rsqrt<const N: usize, R: Real>(x: R) -> R {
 /// let (x, s) = (0.97_f64, 2000.0);
 /// assert!((fast::pow_phong(x, s) / x.powf(s) - 1.0).abs() < 1e-5);
 /// ```
-#[inline]
+#[inline(always)]
 #[must_use]
 pub fn pow_phong<R: Real>(x: R, y: R) -> R {
     if single::<R>() {
         pow::<9, 5, R>(x, y)
     } else {
         pow::<9, 4, R>(x, y)
+    }
+}
+
+/// How a model raises a cosine to its exponent, chosen at compile time (a type parameter of
+/// the Phong-family models), so a scene pays for the accuracy it asks for.
+///
+/// * [`ExactPow`]: [`Real::pow`] — `std`/`libm` `powf` on scalars (≤ 1 ULP, a library call that
+///   blocks auto-vectorization in the [`crate::batch`] kernels), wide's `powf` on lanes.
+/// * [`FastPow`]: [`pow_phong`] — relative error ≤ 1e-5 for results ≥ 1e-20 (f32) and
+///   everywhere in f64 (see the module docs), branch-free, no library call: it vectorizes.
+pub trait PowFn: Copy + core::fmt::Debug + Default + Send + Sync + 'static {
+    /// `xʸ` for `x ∈ [0, 1]`, `y ≥ 0` (`0⁰ = 1`).
+    fn pow<R: Real>(x: R, y: R) -> R;
+}
+
+/// [`PowFn`] through [`Real::pow`] (the library `powf`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ExactPow;
+
+impl PowFn for ExactPow {
+    #[inline(always)]
+    fn pow<R: Real>(x: R, y: R) -> R {
+        x.pow(y)
+    }
+}
+
+/// [`PowFn`] through [`pow_phong`] (polynomial, relative error ≤ 1e-5 on the Phong domain).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FastPow;
+
+impl PowFn for FastPow {
+    #[inline(always)]
+    fn pow<R: Real>(x: R, y: R) -> R {
+        pow_phong(x, y)
     }
 }

@@ -424,3 +424,43 @@ fn lanes_cook_torrance_and_compositions() {
         Schlick::<R, 1>::new([s(p[2])]).unwrap(),
     ));
 }
+
+/// The fast-pow variant of the normalized Blinn-Phong stays within the documented 1e-5
+/// relative error of `pow_phong` of the exact-pow model, over the whole lobe (s up to 10⁴,
+/// grazing directions included), wherever the lobe's value is not negligible.
+#[test]
+fn normalized_blinn_phong_fast_pow_within_bound() {
+    use brdf::fast::FastPow;
+    use brdf::models::{MaxCos, NormalizedBlinnPhong};
+    use brdf::normalization::Normalization;
+    for s in [0.0f64, 1.0, 10.0, 64.0, 500.0, 1e4] {
+        let exact = NormalizedBlinnPhong::<f64, 1, MaxCos>::new(
+            [0.5],
+            1.0,
+            [0.04],
+            s,
+            Normalization::TriAceExact,
+        )
+        .unwrap();
+        let fast = NormalizedBlinnPhong::<f64, 1, MaxCos, FastPow>::new(
+            [0.5],
+            1.0,
+            [0.04],
+            s,
+            Normalization::TriAceExact,
+        )
+        .unwrap();
+        for i in 0..=60 {
+            for j in 0..=60 {
+                let wi = common::hemisphere(i as f64 / 60.0, 0.13);
+                let wo = common::hemisphere(j as f64 / 60.0, 0.61);
+                let (a, b) = (exact.eval(wi, wo)[0], fast.eval(wi, wo)[0]);
+                assert!(b.is_finite() && b >= 0.0);
+                assert!(
+                    (a - b).abs() <= 1e-5 * a + 1e-300,
+                    "s = {s}: exact {a}, fast {b} at {wi:?} {wo:?}"
+                );
+            }
+        }
+    }
+}

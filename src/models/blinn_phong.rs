@@ -25,6 +25,7 @@ use super::{
     Brdf, DENOM_FLOOR, Energy, Properties, Reciprocity, half_and_cos_d, masked, safe_dirs,
     splat_channels, unit_channels,
 };
+use crate::fast::{ExactPow, PowFn};
 use crate::normalization::{Normalization, TRI_ACE_OFFSET};
 use crate::{Error, Real, Scalar, Vec3};
 
@@ -204,20 +205,26 @@ impl SpecularDenominator for MaxCos {
 /// its albedo stays ≤ `R_s` for the tri-Ace factors (proved numerically in the tests for
 /// `s ∈ [0, 10⁴]`).
 ///
+/// `P` chooses how `(wm.z)^s` is computed: [`ExactPow`] (default, the library `powf`) or
+/// [`crate::fast::FastPow`] (polynomial, relative error ≤ 1e-5 on the lobe's domain, and it
+/// vectorizes in the [`crate::batch`] kernels).
+///
 /// Domain: `R_s, F0 ∈ [0, 1]`, `s ∈ [0, ∞)`.
 ///
 /// References: Y. Gotanda, "Basic of Reflectance", tri-Ace, Imagine Day 2009 (the seed);
 /// Y. Gotanda, SIGGRAPH 2010 course (the `max(N·L, N·V)` form); C. Schlick 1994.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct NormalizedBlinnPhongSpecular<R, const N: usize, V = CosThetaI> {
+pub struct NormalizedBlinnPhongSpecular<R, const N: usize, V = CosThetaI, P = ExactPow> {
     rs_c: R,
     f0: [R; N],
     shininess: R,
     normalization: Normalization,
-    _v: PhantomData<V>,
+    _v: PhantomData<(V, P)>,
 }
 
-impl<R: Real, const N: usize, V: SpecularDenominator> NormalizedBlinnPhongSpecular<R, N, V> {
+impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn>
+    NormalizedBlinnPhongSpecular<R, N, V, P>
+{
     /// Lobe with specular intensity `rs ∈ [0, 1]`, Fresnel `f0 ∈ [0, 1]` per channel and
     /// exponent `shininess ∈ [0, ∞)`; `c(s)` is computed once, in `f64`.
     ///
@@ -251,14 +258,14 @@ impl<R: Real, const N: usize, V: SpecularDenominator> NormalizedBlinnPhongSpecul
     }
 }
 
-impl<R: Real, const N: usize, V: SpecularDenominator> Brdf<R, N>
-    for NormalizedBlinnPhongSpecular<R, N, V>
+impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
+    for NormalizedBlinnPhongSpecular<R, N, V, P>
 {
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let (wm, cos_d) = half_and_cos_d(wi, wo);
-        let lobe = self.rs_c * wm.z.saturate().pow(self.shininess) / V::denom(wi.z, wo.z);
+        let lobe = self.rs_c * P::pow(wm.z.saturate(), self.shininess) / V::denom(wi.z, wo.z);
         masked(m, {
             let f = schlick_channels(&self.f0, cos_d);
             crate::real::channels(|c| f[c] * lobe)
@@ -390,14 +397,14 @@ impl<R: Real, const N: usize> Brdf<R, N> for CoupledLambert<R, N> {
 /// # Ok::<(), brdf::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct NormalizedBlinnPhong<R, const N: usize, V = CosThetaI> {
+pub struct NormalizedBlinnPhong<R, const N: usize, V = CosThetaI, P = ExactPow> {
     /// The energy-conserving diffuse term.
     pub diffuse: CoupledLambert<R, N>,
     /// The normalized specular lobe.
-    pub specular: NormalizedBlinnPhongSpecular<R, N, V>,
+    pub specular: NormalizedBlinnPhongSpecular<R, N, V, P>,
 }
 
-impl<R: Real, const N: usize, V: SpecularDenominator> NormalizedBlinnPhong<R, N, V> {
+impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> NormalizedBlinnPhong<R, N, V, P> {
     /// The seed's model with diffuse `rd`, specular intensity `rs`, Fresnel `f0` (all in
     /// `[0, 1]`) and exponent `shininess ∈ [0, ∞)`.
     ///
@@ -418,7 +425,9 @@ impl<R: Real, const N: usize, V: SpecularDenominator> NormalizedBlinnPhong<R, N,
     }
 }
 
-impl<R: Real, const N: usize, V: SpecularDenominator> Brdf<R, N> for NormalizedBlinnPhong<R, N, V> {
+impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
+    for NormalizedBlinnPhong<R, N, V, P>
+{
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let d = self.diffuse.eval(wi, wo);
