@@ -74,3 +74,8 @@ pub use error::Error;
 pub use models::Brdf;
 pub use real::{Real, Scalar, f32x4, f32x8, f32x16, f64x4};
 pub use vec3::Vec3;
+
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -82,6 +82,12 @@ pub enum Reciprocity {
 
 /// Whether a model conserves energy: directional albedo `ρ(wo) = ∫ f(wi, wo) cos θi dωi ≤ 1`
 /// for every `wo` (and, for reciprocal models, every `wi`).
+///
+/// For a reciprocal model this one integral is the whole story. For a non-reciprocal one it
+/// is the *view-side* albedo; physical energy conservation is the *light-side* bound
+/// `∫ f(wi, wo) cos θo dωo ≤ 1` for every `wi`, and the two can differ (the seed's
+/// normalized Blinn-Phong satisfies the first and breaks the second at grazing light). Each
+/// model's declaration says which side it refers to when they differ.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Energy {
     /// Albedo ≤ 1 over the model's whole parameter domain.
