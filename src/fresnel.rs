@@ -453,11 +453,45 @@ pub fn cook_torrance_gc<R: Real>(cos_theta: R, eta: R) -> R {
 // Schlick and F0 conversions
 // ---------------------------------------------------------------------------------------
 
+/// The complement of Schlick's weight, `1 − (1 − cos θ)⁵`, without cancellation near
+/// `cos θ = 0` (grazing), where the direct form loses every digit in `f32`.
+///
+/// ```text
+/// 1 − (1 − c)⁵ = c (5 − 10c + 10c² − 5c³ + c⁴)      for c < 1/2   (Horner)
+///              = 1 − (1 − c)⁵                          for c ≥ 1/2   ((1 − c)⁵ ≤ 1/32)
+/// ```
+///
+/// Both forms are evaluated and one is selected, so the function is branch-free on lanes.
+/// `cos θ` is clamped to `[0, 1]`. Used by the Fresnel-coupled diffuse terms (Shirley et al.
+/// 1997, Ashikhmin-Shirley 2000).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fresnel::schlick_complement;
+/// let c = 1e-6_f32;
+/// assert!((schlick_complement(c) / (5.0 * c) - 1.0).abs() < 1e-5);
+/// assert_eq!(schlick_complement(1.0_f32), 1.0);
+/// ```
+#[inline(always)]
+#[must_use]
+pub fn schlick_complement<R: Real>(cos_theta: R) -> R {
+    let c = cos_theta.saturate();
+    let horner = c * c.mul_add(
+        c.mul_add(
+            c.mul_add(c - R::from_f64(5.0), R::from_f64(10.0)),
+            R::from_f64(-10.0),
+        ),
+        R::from_f64(5.0),
+    );
+    R::select(c.lt(R::from_f64(0.5)), horner, R::one() - schlick_weight(c))
+}
+
 /// Schlick's weight `(1 − cos θ)⁵`, with `1 − cos θ` clamped to `[0, 1]`.
 ///
 /// Reference: C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering",
 /// Computer Graphics Forum 13(3), 1994.
-#[inline]
+#[inline(always)]
 #[must_use]
 pub fn schlick_weight<R: Real>(cos_theta: R) -> R {
     let m = (R::one() - cos_theta).saturate();

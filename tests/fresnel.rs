@@ -729,3 +729,40 @@ fn lanes_match_scalar() {
     });
     println!("worst ULP per formula: {report:?}");
 }
+
+/// `schlick_complement` = 1 − (1 − c)⁵ in f32 within 4 ulp-level relative error of the f64
+/// reference over [0, 1], grazing included (the direct f32 form loses every digit there),
+/// and the lanes match the scalar.
+#[test]
+fn schlick_complement_is_accurate_at_grazing() {
+    use brdf::fresnel::schlick_complement;
+    let mut worst = 0.0f64;
+    for i in 0..=20_000 {
+        // Dense near 0 (down to 1e-9) and uniform over [0, 1].
+        let c = if i <= 10_000 {
+            1e-9 * 1e9f64.powf(i as f64 / 10_000.0)
+        } else {
+            (i - 10_000) as f64 / 10_000.0
+        };
+        let c32 = c as f32;
+        let exact = 1.0 - (1.0 - c32 as f64).powi(5);
+        let got = schlick_complement(c32) as f64;
+        let rel = (got - exact).abs() / exact.max(f64::MIN_POSITIVE);
+        worst = worst.max(rel);
+        let direct = 1.0 - (1.0 - c32).powi(5);
+        if c < 1e-8 {
+            // The naive form is 0 there: the test would catch a regression to it.
+            assert_eq!(direct, 0.0);
+        }
+    }
+    assert!(worst < 5e-7, "worst relative error {worst:e}");
+    assert_eq!(schlick_complement(0.0f32), 0.0);
+    assert_eq!(schlick_complement(-0.5f64), 0.0);
+    assert_eq!(schlick_complement(1.5f64), 1.0);
+    let rows: Vec<[f64; 1]> = (0..=64)
+        .map(|i| [if i == 0 { 1e-7 } else { i as f64 / 64.0 }])
+        .collect();
+    common::assert_lanes_match!("schlick_complement", ulp = 0, abs = 0.0, &rows, fn(c) {
+        brdf::fresnel::schlick_complement(c)
+    });
+}

@@ -2,8 +2,9 @@
 
 use super::{
     Brdf, DENOM_FLOOR, Energy, Properties, Reciprocity, half_and_cos_d, masked, safe_dirs,
-    schlick_weight, splat_channels, unit_channels,
+    splat_channels, unit_channels,
 };
+use crate::fresnel::schlick_complement;
 use crate::{Error, Real, Vec3};
 
 /// Ashikhmin and Shirley's anisotropic Phong model: a Schlick-Fresnel anisotropic lobe and
@@ -99,8 +100,8 @@ impl<R: Real, const N: usize> Brdf<R, N> for AshikhminShirley<R, N> {
         let den = (cos_d * wi.z.max(wo.z)).max(R::from_f64(DENOM_FLOOR));
         let lobe = self.spec_k * h.z.saturate().pow(e) / den;
         let half = R::from_f64(0.5);
-        let di = R::one() - schlick_weight(wi.z * half);
-        let dd = di * (R::one() - schlick_weight(wo.z * half));
+        let di = schlick_complement(wi.z * half);
+        let dd = di * schlick_complement(wo.z * half);
         let r: [R; N] = crate::real::channels(|c| {
             let f = crate::fresnel::schlick(self.rs[c], cos_d);
             lobe.mul_add(f, self.diffuse_k[c] * dd)

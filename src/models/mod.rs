@@ -159,14 +159,6 @@ pub(crate) fn safe_dirs<R: Real>(wi: Vec3<R>, wo: Vec3<R>) -> (R::Mask, Vec3<R>,
     (m, select_vec(m, wi, n), select_vec(m, wo, n))
 }
 
-/// `(1 − c)⁵` for `c ∈ [0, 1]` (clamped), by multiplication: Schlick's Fresnel weight.
-#[inline(always)]
-pub(crate) fn schlick_weight<R: Real>(c: R) -> R {
-    let m = (R::one() - c).saturate();
-    let m2 = m * m;
-    m2 * m2 * m
-}
-
 /// Splats per-channel scalars, widened through `f64`.
 #[inline]
 pub(crate) fn splat_channels<R: Real, const N: usize>(v: [f64; N]) -> [R; N] {

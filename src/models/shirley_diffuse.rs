@@ -1,9 +1,9 @@
 //! The Fresnel-coupled diffuse term of Shirley et al. (1997).
 
 use super::{
-    Brdf, Energy, Properties, Reciprocity, masked, safe_dirs, schlick_weight, splat_channels,
-    unit_channels,
+    Brdf, Energy, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
 };
+use crate::fresnel::schlick_complement;
 use crate::{Error, Real, Vec3};
 
 /// Diffuse reflection under a smooth dielectric coat, with Schlick's Fresnel transmission
@@ -75,7 +75,7 @@ impl<R: Real, const N: usize> Brdf<R, N> for ShirleyDiffuse<R, N> {
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
-        let t = (R::one() - schlick_weight(wi.z)) * (R::one() - schlick_weight(wo.z));
+        let t = schlick_complement(wi.z) * schlick_complement(wo.z);
         masked(m, crate::real::channels(|c| self.k[c] * t))
     }
 
