@@ -93,6 +93,7 @@ pub(crate) fn unit_interval<T: Into<f64> + Copy>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::format;
 
     #[test]
     fn rejects_nan_infinite_and_out_of_domain() {

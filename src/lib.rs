@@ -50,6 +50,10 @@
 #![deny(missing_docs)]
 #![warn(clippy::doc_markdown)]
 
+// Unit tests use `std` (formatting, `Vec`) even when the library is built without it.
+#[cfg(all(test, not(feature = "std")))]
+extern crate std;
+
 #[cfg(not(any(feature = "std", feature = "libm")))]
 compile_error!("brdf needs a math backend: enable the `std` (default) or the `libm` feature.");
 

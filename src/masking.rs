@@ -97,6 +97,23 @@ pub trait Masking<R: Real, D: Ndf<R>> {
     fn visibility(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
         self.g2(ndf, wi, wo, wm) / (R::from_f64(4.0) * wi.z * wo.z).max(R::from_f64(1e-30))
     }
+
+    /// The visibility as a fraction `(numerator, denominator)`, given also the unnormalized
+    /// half vector `h` (same direction as `wm`), so that a Cook-Torrance body divides once for
+    /// `D·V` (see [`crate::ndf::Ndf::d_fraction`]). The default is `(visibility(..), 1)`; the
+    /// Smith terms override it with `(χ⁺, 4·den)` and never need `wm` normalized.
+    #[inline(always)]
+    fn visibility_fraction(
+        &self,
+        ndf: &D,
+        wi: Vec3<R>,
+        wo: Vec3<R>,
+        wm: Vec3<R>,
+        h: Vec3<R>,
+    ) -> (R, R) {
+        let _ = h;
+        (self.visibility(ndf, wi, wo, wm), R::one())
+    }
 }
 
 /// `χ⁺(wi·wm) χ⁺(wo·wm)`: both directions see the front of the microfacet.
@@ -157,6 +174,20 @@ impl<R: Real, D: SmithLambda<R>> Masking<R, D> for SmithHeightCorrelated {
         let v = (R::from_f64(4.0) * den).max(tiny()).recip();
         R::select(front(wi, wo, wm), v, R::zero())
     }
+
+    #[inline(always)]
+    fn visibility_fraction(
+        &self,
+        ndf: &D,
+        wi: Vec3<R>,
+        wo: Vec3<R>,
+        _wm: Vec3<R>,
+        h: Vec3<R>,
+    ) -> (R, R) {
+        // `front` only reads signs, which `h` shares with `wm`.
+        let den = (R::from_f64(4.0) * ndf.height_correlated_den(wi, wo)).max(tiny());
+        (R::select(front(wi, wo, h), R::one(), R::zero()), den)
+    }
 }
 
 /// Smith separable (uncorrelated) masking-shadowing: the product of the two `G1`.
@@ -197,6 +228,20 @@ impl<R: Real, D: SmithLambda<R>> Masking<R, D> for SmithSeparable {
         let (gi, go) = (ndf.separable_den(wi), ndf.separable_den(wo));
         let v = (R::from_f64(4.0) * gi * go).max(tiny()).recip();
         R::select(front(wi, wo, wm), v, R::zero())
+    }
+
+    #[inline(always)]
+    fn visibility_fraction(
+        &self,
+        ndf: &D,
+        wi: Vec3<R>,
+        wo: Vec3<R>,
+        _wm: Vec3<R>,
+        h: Vec3<R>,
+    ) -> (R, R) {
+        let (gi, go) = (ndf.separable_den(wi), ndf.separable_den(wo));
+        let den = (R::from_f64(4.0) * gi * go).max(tiny());
+        (R::select(front(wi, wo, h), R::one(), R::zero()), den)
     }
 }
 

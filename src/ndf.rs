@@ -73,6 +73,21 @@ use crate::{Real, Scalar, Vec3};
 pub trait Ndf<R: Real> {
     /// `D(wm)` for a unit `wm` in the local frame.
     fn d(&self, wm: Vec3<R>) -> R;
+
+    /// `D(wm)` as a fraction `(numerator, denominator)`, given also the unnormalized half
+    /// vector `h = wi + wo` (same direction as `wm`) and `len2 = h·h`.
+    ///
+    /// A Cook-Torrance body multiplies `D` by the visibility and divides once
+    /// (`(dₙ vₙ)/(d_d v_d)`, see [`crate::masking::Masking::visibility_fraction`]), and an NDF
+    /// that can be written on `h` directly spares the normalization of the half vector: after
+    /// inlining, whatever an implementation does not use is never computed. The default is
+    /// `(d(wm), 1)`; [`Ggx`] overrides it with `(norm·len2², (x²/αx² + y²/αy² + z²)²)` on `h`,
+    /// which is `D(h/|h|)` exactly and needs neither a square root nor a division.
+    #[inline(always)]
+    fn d_fraction(&self, wm: Vec3<R>, h: Vec3<R>, len2: R) -> (R, R) {
+        let _ = (h, len2);
+        (self.d(wm), R::one())
+    }
 }
 
 /// An NDF with a closed-form Smith auxiliary function Λ (Heitz 2014, eq. 72–86), from which
@@ -336,6 +351,15 @@ impl<R: Real> Ndf<R> for Ggx<R> {
         let den = self.slope2_cos2(wm) + wm.z * wm.z;
         let d = self.norm / (den * den).max(tiny());
         R::select(wm.z.gt(R::zero()), d, R::zero())
+    }
+
+    /// `x²/αx² + y²/αy² + z²` is homogeneous of degree 2, so on `h = |h|·wm` the stretched
+    /// denominator is `len2` times that of `wm`: `D = norm·len2² / (stretched(h))²`.
+    #[inline(always)]
+    fn d_fraction(&self, _wm: Vec3<R>, h: Vec3<R>, len2: R) -> (R, R) {
+        let den = self.slope2_cos2(h) + h.z * h.z;
+        let num = R::select(h.z.gt(R::zero()), self.norm * len2 * len2, R::zero());
+        (num, (den * den).max(tiny()))
     }
 }
 

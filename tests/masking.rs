@@ -736,3 +736,43 @@ fn simd_lanes_match_scalar() {
         println!("  {name:<24} {w}");
     }
 }
+
+/// The fraction forms used by Cook-Torrance (`Ndf::d_fraction`, `Masking::visibility_fraction`)
+/// equal `d` and `visibility` for any scale of the half vector, anisotropic GGX included.
+#[test]
+fn fraction_forms_equal_the_direct_forms() {
+    use brdf::masking::{Masking, SmithHeightCorrelated, SmithSeparable, VCavity};
+    use brdf::ndf::{Beckmann, Ggx, Ndf};
+    let ggx = Ggx::<f64>::anisotropic(0.05, 0.4).unwrap();
+    let beck = Beckmann::<f64>::new(0.3).unwrap();
+    let mut worst = 0.0f64;
+    for i in 0..40 {
+        for j in 0..40 {
+            let wi = common::hemisphere(1e-6 + i as f64 / 40.0, 0.37 * i as f64);
+            let wo = common::hemisphere(1e-6 + j as f64 / 40.0, 0.71 * j as f64);
+            let h = wi + wo;
+            let len2 = h.length_squared();
+            let wm = h.scale(1.0 / len2.sqrt());
+            let rel = |a: f64, (n, d): (f64, f64)| (n / d - a).abs() / a.abs().max(1e-300);
+            worst = worst.max(rel(ggx.d(wm), ggx.d_fraction(wm, h, len2)));
+            worst = worst.max(rel(beck.d(wm), beck.d_fraction(wm, h, len2)));
+            for v in [
+                rel(
+                    SmithHeightCorrelated.visibility(&ggx, wi, wo, wm),
+                    SmithHeightCorrelated.visibility_fraction(&ggx, wi, wo, wm, h),
+                ),
+                rel(
+                    SmithSeparable.visibility(&ggx, wi, wo, wm),
+                    SmithSeparable.visibility_fraction(&ggx, wi, wo, wm, h),
+                ),
+                rel(
+                    VCavity.visibility(&beck, wi, wo, wm),
+                    VCavity.visibility_fraction(&beck, wi, wo, wm, h),
+                ),
+            ] {
+                worst = worst.max(v);
+            }
+        }
+    }
+    assert!(worst < 1e-13, "worst relative difference {worst:e}");
+}

@@ -74,7 +74,12 @@ where
         let (m, wi, wo) = safe_dirs(wi, wo);
         // cos θd = wi·wm = wo·wm, computed symmetrically as |wi + wo|/2.
         let (wm, cos_d) = half_and_cos_d(wi, wo);
-        let dv = self.ndf.d(wm) * self.masking.visibility(&self.ndf, wi, wo, wm);
+        // D·V with a single division; NDFs written on the unnormalized half vector (GGX) never
+        // use `wm`, and then its normalization is not computed at all.
+        let h = wi + wo;
+        let (dn, dd) = self.ndf.d_fraction(wm, h, h.length_squared());
+        let (vn, vd) = self.masking.visibility_fraction(&self.ndf, wi, wo, wm, h);
+        let dv = (dn * vn) / (dd * vd).max(R::from_f64(1e-30));
         let f = self.fresnel.eval(cos_d);
         masked(m, crate::real::channels(|c| f[c] * dv))
     }
