@@ -274,8 +274,8 @@ pub fn dielectric_transmittance<R: Real>(cos_theta_i: R, eta: R) -> R {
 /// The `R_p/R_s` identity follows from `r_p/r_s = ∓cos(θi + θt)/cos(θi − θt)` and Snell's law
 /// `η̃ sin θt = s`. This is the classic "a², b²" form (e.g. K. D. Möller, *Optics*, 1988;
 /// used by Mitsuba 3's `fresnel_conductor`); here `a²`, `b²` are computed without
-/// subtractive cancellation: `a² = 2η²k² / (a²+b² − t₀)` when `t₀ < 0`, and
-/// `b² = 2η²k² / (a²+b² + t₀)` when `t₀ ≥ 0`.
+/// subtractive cancellation: the larger is `(a²+b² + |t₀|)/2` and the smaller `η²k²` over it
+/// (`a²b² = η²k²`), and `R_s + R_p` share one division.
 ///
 /// * Domain: `eta ∈ (0, ∞)`, `k ∈ [0, ∞)` with `(η² + k²)²` finite in the lane precision
 ///   (tested for η ∈ [1e-3, 1e3], k ≤ 100 on f32 and f64); `cos_theta_i` taken by magnitude
@@ -300,32 +300,49 @@ pub fn dielectric_transmittance<R: Real>(cos_theta_i: R, eta: R) -> R {
 #[inline]
 #[must_use]
 pub fn conductor<R: Real>(cos_theta_i: R, eta: R, k: R) -> R {
-    let half = R::from_f64(0.5);
+    let (e, nk2) = conductor_constants(eta, k);
+    conductor_from_constants(cos_theta_i, e, nk2)
+}
+
+/// The per-material constants of [`conductor`]: `e = (η − 1)(η + 1) − k²` (exact 0 for
+/// `η = 1, k = 0`) and `η²k²`. [`Conductor`] stores them so that `eval` does not recompute them.
+#[inline(always)]
+fn conductor_constants<R: Real>(eta: R, k: R) -> (R, R) {
+    let e = (eta - R::one()).mul_add(eta + R::one(), -(k * k));
+    let nk = eta * k;
+    (e, nk * nk)
+}
+
+/// The body of [`conductor`] on precomputed constants (see [`conductor_constants`]).
+///
+/// Steps, with `t₀ = e + c² = η² − k² − s²`:
+/// * `a² + b² = h = √(t₀² + 4η²k²)`; the larger of `a²`, `b²` is `(h + |t₀|)/2` (no
+///   cancellation) and the smaller follows from `a²b² = η²k²` — one division;
+/// * `R = (R_s + R_p)/2 = num_s (den_p + num_p) / (2 den_s den_p)` — one division for both
+///   polarizations (every term is a sum of squares: no cancellation).
+#[inline(always)]
+fn conductor_from_constants<R: Real>(cos_theta_i: R, e: R, nk2: R) -> R {
     let c = cos_theta_i.abs().min(R::one());
     let c2 = c * c;
     let s2 = R::one() - c2;
-    // t0 = η² − k² − s² = (η − 1)(η + 1) + c² − k²: exact at η = 1, k = 0 (as in dielectric).
-    let t0 = (eta - R::one()).mul_add(eta + R::one(), c2) - k * k;
-    let two_nk = (eta + eta) * k;
-    let q = two_nk * two_nk * half; // 2η²k²
-    let h = t0.mul_add(t0, two_nk * two_nk).sqrt(); // a² + b²
-    // a² and b², each in its cancellation-free form; the selected division never has a
-    // zero divisor (t0 < 0 ⇒ h − t0 > 0; t0 > 0 ⇒ h + t0 > 0).
-    let a2 = R::select(t0.ge(R::zero()), (h + t0) * half, q / (h - t0));
-    let b2 = R::select(t0.gt(R::zero()), q / (h + t0), (h - t0) * half);
+    let t0 = e + c2;
+    let h = t0.mul_add(t0, R::from_f64(4.0) * nk2).sqrt();
+    let big = (h + t0.abs()) * R::from_f64(0.5);
+    let small = nk2 / big.max(R::from_f64(1e-30));
+    let t0_pos = t0.ge(R::zero());
+    let a2 = R::select(t0_pos, big, small);
+    let b2 = R::select(t0_pos, small, big);
     let a = a2.sqrt();
-    let am = a - c;
-    let ap = a + c;
+    let (am, ap) = (a - c, a + c);
     let num_s = am.mul_add(am, b2);
     let den_s = ap.mul_add(ap, b2);
-    let r_s = R::select(den_s.gt(R::zero()), num_s / den_s, R::zero());
-    let ca = c * a;
     let cb2 = c2 * b2;
-    let pm = ca - s2;
-    let pp = ca + s2;
-    let ratio = pm.mul_add(pm, cb2) / pp.mul_add(pp, cb2);
-    let r_p = r_s * ratio;
-    (r_s + r_p) * half
+    let (pm, pp) = (c.mul_add(a, -s2), c.mul_add(a, s2));
+    let num_p = pm.mul_add(pm, cb2);
+    let den_p = pp.mul_add(pp, cb2);
+    let den = R::from_f64(2.0) * den_s * den_p;
+    // den = 0 only for an index-matched interface at grazing incidence (η = 1, k = 0, c = 0).
+    R::select(den.gt(R::zero()), num_s * (den_p + num_p) / den, R::zero())
 }
 
 /// Complex s and p amplitude reflection coefficients of a conductor (or, with `k = 0`, of a
@@ -636,12 +653,11 @@ pub fn f82_b<R: Real>(f0: R, tint: R) -> R {
 #[inline]
 #[must_use]
 pub fn f82_tint_with_b<R: Real>(f0: R, b: R, cos_theta: R) -> R {
+    // F_Schlick(F0, μ) − b μ (1 − μ)⁶, with (1 − μ)⁶ = schlick_weight(μ)·(1 − μ).
     let m = (R::one() - cos_theta).saturate();
-    let mu = R::one() - m;
-    let m2 = m * m;
-    let m5 = m2 * m2 * m;
+    let m5 = schlick_weight(cos_theta);
     let s = (R::one() - f0).mul_add(m5, f0);
-    (s - b * mu * m5 * m).saturate()
+    (s - b * (R::one() - m) * m5 * m).saturate()
 }
 
 /// Hoffman's F82-tint Fresnel for metals: Schlick with a correction so that the reflectance
@@ -683,8 +699,8 @@ pub fn f82_tint<R: Real>(f0: R, tint: R, cos_theta: R) -> R {
 ///
 /// `k` solves `F0(n, k) = r` for `k` (see [`f0_from_complex_ior`]); real `k` needs
 /// `n ∈ [(1−√r)/(1+√r), n_max]`, which `n ∈ [n_min, n_max]` satisfies. `g = 0` gives the
-/// dielectric `n = n_max, k = 0`; `g = 1` the smallest `n` and largest `k` of the family,
-/// the most saturated edge colour. The result is exact Fresnel: [`conductor`]`(1, n, k) = r`.
+/// dielectric `n = n_max, k = 0`; `g = 1` the smallest `n` (`n_min`). Along the family `k`
+/// is not monotonic: it peaks at `n = (1 + r)/(1 − r)`, inside `[n_min, n_max]`. The result is exact Fresnel: [`conductor`]`(1, n, k) = r`.
 ///
 /// * Domain `r ∈ [0, 1)`, `g ∈ [0, 1]`. As `r → 1`, `n_max` and `k` grow like `1/(1 − √r)`;
 ///   shader implementations clamp `r ≤ 0.99`.
@@ -737,11 +753,8 @@ pub fn gulbrandsen_from_nk<R: Real>(n: R, k: R) -> (R, R) {
 
 #[inline]
 fn gulbrandsen_n_range<R: Real>(r: R) -> (R, R) {
-    let s = r.safe_sqrt();
-    (
-        (R::one() - r) / (R::one() + r),
-        (R::one() + s) / (R::one() - s),
-    )
+    // n_max is the dielectric with F0 = r.
+    ((R::one() - r) / (R::one() + r), ior_from_f0(r))
 }
 
 // ---------------------------------------------------------------------------------------
@@ -895,6 +908,9 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Dielectric<R> {
 pub struct Conductor<R, const N: usize> {
     eta: [R; N],
     k: [R; N],
+    /// Per channel `(η − 1)(η + 1) − k²` and `η²k²` (see `conductor_constants`).
+    e: [R; N],
+    nk2: [R; N],
 }
 
 impl<R: Real, const N: usize> Conductor<R, N> {
@@ -904,10 +920,19 @@ impl<R: Real, const N: usize> Conductor<R, N> {
             error::positive("eta", eta[i])?;
             error::non_negative("k", k[i])?;
         }
-        Ok(Self {
-            eta: eta.map(splat),
-            k: k.map(splat),
-        })
+        Ok(Self::from_lanes(eta.map(splat), k.map(splat)))
+    }
+
+    /// Builds the per-channel constants from already validated lanes.
+    #[inline]
+    fn from_lanes(eta: [R; N], k: [R; N]) -> Self {
+        let c: [(R, R); N] = core::array::from_fn(|i| conductor_constants(eta[i], k[i]));
+        Self {
+            eta,
+            k,
+            e: c.map(|c| c.0),
+            nk2: c.map(|c| c.1),
+        }
     }
 
     /// A conductor from Gulbrandsen's artist-friendly reflectivity `r ∈ [0, 1)` and edge
@@ -954,17 +979,14 @@ impl<R: Real> Conductor<R, 3> {
     /// An RGB conductor from a measured preset of [`crate::ior::METALS_RGB`].
     pub fn from_rgb_preset(p: &crate::ior::RgbPreset) -> Self {
         let of = <R::Scalar as Scalar>::of;
-        Self {
-            eta: p.eta.map(|x| R::splat(of(x))),
-            k: p.k.map(|x| R::splat(of(x))),
-        }
+        Self::from_lanes(p.eta.map(|x| R::splat(of(x))), p.k.map(|x| R::splat(of(x))))
     }
 }
 
 impl<R: Real, const N: usize> FresnelTerm<R, N> for Conductor<R, N> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
-        crate::real::channels(|i| conductor(cos_theta_d, self.eta[i], self.k[i]))
+        crate::real::channels(|i| conductor_from_constants(cos_theta_d, self.e[i], self.nk2[i]))
     }
 }
 

@@ -55,7 +55,7 @@
 //! | [`VCavity`] | 0.909 | 0.627 | 0.803 | 0.867 | 0.900 |
 //!
 //! Reading the tables: the separable product is at most ~0.09 below the correlated form
-//! (where `Λi = Λo ≈ 1`); Hammon's fit is exact at `α = 1` and worst for smooth surfaces at
+//! (0.0902 where `Λi = Λo ≈ 1.62`: `1/(1 + 2Λ)` against `1/(1 + Λ)²`); Hammon's fit is exact at `α = 1` and worst for smooth surfaces at
 //! grazing (`cos θ ≈ α`); Kelemen and the V-cavity return `G2 ≈ 1` for two grazing directions
 //! on opposite sides (half vector ≈ n), where Smith gives ≈ 0; the implicit term is the
 //! worst for smooth surfaces at moderate angles. (On the grid the `α = 0.05` column misses
@@ -89,7 +89,7 @@ pub trait Masking<R: Real, D: Ndf<R>> {
     /// `G2(wi, wo, wm)`, dimensionless in `[0, 1]`.
     fn g2(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R;
 
-    /// The visibility term `V = G2 / (4 cos θi cos θo)` in sr⁻¹·(sr) — what a Cook-Torrance
+    /// The visibility term `V = G2 / (4 cos θi cos θo)` (dimensionless) — what a Cook-Torrance
     /// body multiplies by `D·F`. Terms with a cheaper direct form of `V` override this.
     /// Domain: `wi.z ≥ 0`, `wo.z ≥ 0`; the default body floors the denominator at `1e-30`, so
     /// it is finite (if large) at exactly grazing angles.
@@ -198,8 +198,8 @@ impl<R: Real, D: SmithLambda<R>> Masking<R, D> for SmithHeightCorrelated {
 /// ```
 ///
 /// Ignores the correlation of masking and shadowing by height, so `G2` is lower than
-/// [`SmithHeightCorrelated`] (by up to 0.09 absolute, where `Λ(wi) = Λ(wo) ≈ 1`: `1/4`
-/// vs `1/3`; see the [module](self) table); it is what Walter et al. 2007 and Mitsuba use.
+/// [`SmithHeightCorrelated`] (by up to 0.0902 absolute, where `Λ(wi) = Λ(wo) ≈ 1.62`:
+/// `1/(1 + Λ)²` against `1/(1 + 2Λ)`; see the [module](self) table); it is what Walter et al. 2007 and Mitsuba use.
 ///
 /// Reference: B. Smith, "Geometrical shadowing of a random rough surface", IEEE TAP 1967;
 /// B. Walter et al., EGSR 2007, §5; E. Heitz, JCGT 2014 (separable masking and shadowing).
@@ -263,9 +263,22 @@ impl<R: Real, D: SmithLambda<R>> Masking<R, D> for SmithSeparable {
 #[inline]
 #[must_use]
 pub fn walter_beckmann_g1<R: Real>(a: R) -> R {
-    let num = a * (R::from_f64(3.535) + R::from_f64(2.181) * a);
-    let den = R::one() + a * (R::from_f64(2.276) + R::from_f64(2.577) * a);
-    R::select(a.lt(R::from_f64(1.6)), (num / den).min(R::one()), R::one())
+    let (num, den) = walter_g1_parts(a);
+    R::select(
+        a.lt(R::from_f64(1.6)),
+        (a * num / den).min(R::one()),
+        R::one(),
+    )
+}
+
+/// Walter's rational fit `G1 ≈ a·p(a)/q(a)` below `a = 1.6`: returns `(p(a), q(a))` with
+/// `p = 3.535 + 2.181a`, `q = 1 + 2.276a + 2.577a²` (EGSR 2007, eq. 27). The one place the
+/// coefficients live.
+#[inline(always)]
+fn walter_g1_parts<R: Real>(a: R) -> (R, R) {
+    let p = R::from_f64(2.181).mul_add(a, R::from_f64(3.535));
+    let q = a.mul_add(R::from_f64(2.577).mul_add(a, R::from_f64(2.276)), R::one());
+    (p, q)
 }
 
 /// `G1(w)/cos θ` of Walter's approximation, finite at grazing (`3.535/(α(w) sin θ)` there).
@@ -275,8 +288,9 @@ fn walter_g1_over_cos<R: Real>(ndf: &Beckmann<R>, w: Vec3<R>) -> R {
     let sigma = ndf.projected_alpha(w) * (w.x * w.x + w.y * w.y).sqrt();
     let sigma = sigma.max(tiny());
     let a = c / sigma;
-    let g = (R::from_f64(3.535) + R::from_f64(2.181) * a)
-        / (sigma * (R::one() + a * (R::from_f64(2.276) + R::from_f64(2.577) * a)));
+    // G1/cos θ = (a p/q)/cos θ = p/(σ q), since a = cos θ/σ.
+    let (p, q) = walter_g1_parts(a);
+    let g = p / (sigma * q);
     let inv_c = c.max(tiny()).recip();
     R::select(a.lt(R::from_f64(1.6)), g.min(inv_c), inv_c)
 }

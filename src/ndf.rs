@@ -645,7 +645,7 @@ impl<R: Real> BlinnPhong<R> {
     #[inline]
     pub fn from_lanes(shininess: R) -> Result<Self, Error> {
         check_lanes("shininess", shininess, SHININESS_DOMAIN, 0.0, MAX_SHININESS)?;
-        let norm = (shininess + R::from_f64(2.0)) * R::from_f64(0.5) * R::frac_1_pi();
+        let norm = crate::normalization::blinn_phong_ndf(shininess);
         Ok(Self { shininess, norm })
     }
 

@@ -416,7 +416,8 @@ pub fn phong_lobe<R: Real>(s: R) -> R {
 #[inline]
 #[must_use]
 pub fn phong_cosine<R: Real>(s: R) -> R {
-    (s + R::from_f64(2.0)) * R::from_f64(0.5 * core::f64::consts::FRAC_1_PI)
+    // The same number as the Blinn-Phong NDF's factor, for a different integral.
+    blinn_phong_ndf(s)
 }
 
 /// A choice of normalization factor, stored per material.
