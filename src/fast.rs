@@ -129,37 +129,6 @@
 //! `-C target-feature=+fma` (or `target-cpu`) to fuse everywhere.
 //!
 
-//! # Measured accuracy and cost
-//!
-//! Maximum relative error on 10⁶-point grids (`exp2` over `[−126, 0]`, `log2` over the normal
-//! range; the minimax error of each fit is listed beside [`EXP2_Q`] and [`LOG2_Q`]):
-//!
-//! | degree | `exp2` f32 | `exp2` f64 | `log2` f32 | `log2` f64 |
-//! |---:|---:|---:|---:|---:|
-//! | 3 | 8.6e-5 | 8.6e-5 | 2.6e-3 | 2.6e-3 |
-//! | 5 | 1.7e-7 | 8.2e-8 | 5.0e-5 | 5.0e-5 |
-//! | 6 | 1.0e-7 | 2.0e-9 | 7.5e-6 | 7.4e-6 |
-//! | 7 | 9.1e-8 | 4.3e-11 | 1.2e-6 | 1.1e-6 |
-//! | 8 | 9.1e-8 | 8.3e-13 | 3.4e-7 | 1.7e-7 |
-//! | 9 | – | – | 1.8e-7 | 2.6e-8 |
-//! | 12 | – | – | 1.5e-7 | 1.0e-10 |
-//!
-//! The absolute error of `log2` in `f32` adds the rounding of the result: up to 3.9e-6 where
-//! `|log₂ x|` is near 126.
-//!
-//! `pow` for Blinn-Phong lobes (results ≥ 1e-30, `|t| = |y·log₂ x| ≤ 99.7`): [`pow_phong`] is
-//! `pow::<9, 4>` on f64 (4.1e-6) and `pow::<9, 5>` on f32 (7.9e-6 for results ≥ 1e-20,
-//! 1.1–1.3e-5 near 1e-30, where f32 rounding of `t` dominates at every degree).
-//!
-//! `rsqrt` relative error by Newton steps 0/1/2/3: bit-trick start (scalars, f64x4) 3.44e-2,
-//! 1.75e-3, 4.7e-6, 1.5e-7 (f32) / 3.2e-11 (f64); hardware estimate (f32 lanes, this AMD CPU)
-//! 2.6e-4, 2.2e-7, 1.3e-7, 1.0e-7.
-//!
-//! Cost against the exact path (`benches/fast.rs`, default x86-64 target): `pow_phong` 0.37×
-//! of `powf` on scalar f32 and 0.2–0.25× inside an AVX2+FMA slice loop, where it vectorizes and
-//! `powf` does not; `exp2::<5>` 0.29×, `log2::<9>` 0.49×, `rsqrt::<1>` on f32x8 0.33×. The full
-//! measured report is `cargo run --release --example tradeoffs` (`docs/tradeoffs.md`).
-
 use crate::real::Real;
 
 /// Coefficients of `q` in `2ᶠ ≈ 1 + f·q(f)`, `f ∈ [0, 1]`, by polynomial degree `D` of
@@ -424,8 +393,8 @@ pub fn exp2<const D: usize, R: Real>(x: R) -> R {
 /// ```
 ///
 /// Domain: positive normal `x` (`f32`: `[1.18·10⁻³⁸, 3.4·10³⁸]`), where the relative error
-/// is bounded by the table in the module docs and the absolute error by half of it plus the
-/// rounding of the result (since
+/// is bounded by the table in the module docs (“Error bounds”) and the absolute error by half
+/// of it plus the rounding of the result (since
 /// `|u·q| ≤ 1/2`). `log2(1) = 0` and `log2(2ᵏ) = k` exactly. Inputs below the smallest normal
 /// — `0`, subnormals (treated as zero, like a GPU's denormals-are-zero) and negative numbers —
 /// give `−∞`; `+∞` gives `128` / `1024` and NaN an unspecified value.
