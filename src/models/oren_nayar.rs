@@ -152,13 +152,13 @@ impl<R: Real, const N: usize> OrenNayarFujii<R, N> {
 }
 
 impl<R: Real, const N: usize> Brdf<R, N> for OrenNayarFujii<R, N> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let s = wi.x.mul_add(wo.x, wi.y * wo.y);
         let t = R::select(s.gt(R::zero()), wi.z.max(wo.z), R::one());
         let st = s / t.max(R::from_f64(super::DENOM_FLOOR));
-        let r: [R; N] = core::array::from_fn(|c| self.b[c].mul_add(st, self.a[c]));
+        let r: [R; N] = crate::real::channels(|c| self.b[c].mul_add(st, self.a[c]));
         masked(m, r)
     }
 
