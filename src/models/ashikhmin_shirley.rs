@@ -114,8 +114,8 @@ impl<R: Real, const N: usize> Brdf<R, N> for AshikhminShirley<R, N> {
         Properties {
             reciprocity: Reciprocity::Reciprocal,
             energy: Energy::ConservingWhen {
-                condition: "Rd, Rs ∈ [0, 1] (the constructor's domain; checked numerically \
-                            for nu, nv ≤ 1e4)",
+                condition: "Rd, Rs ∈ [0, 1] (the constructor's domain); albedo ≤ 1 checked \
+                            numerically for nu, nv ≤ 1e4 only, not over (1e4, 1e6]",
             },
         }
     }
