@@ -669,6 +669,20 @@ impl<R: Real> Ndf<R> for BlinnPhong<R> {
 // Ashikhmin-Shirley
 // ---------------------------------------------------------------------------------------------
 
+/// The Ashikhmin-Shirley exponent `e = (nu x² + nv y²)/(x² + y²)` of a unit half vector
+/// `wm = (x, y, z)`; `(nu + nv)/2` where `x² + y² ≤ 1e-30` (at the pole any `e` gives
+/// `cos^e θ = 1`). Shared by [`AshikhminShirley`] and the model of the same name.
+#[inline(always)]
+pub(crate) fn ashikhmin_shirley_exponent<R: Real>(nu: R, nv: R, wm: Vec3<R>) -> R {
+    let (x2, y2) = (wm.x * wm.x, wm.y * wm.y);
+    let sin2 = x2 + y2;
+    R::select(
+        sin2.gt(tiny()),
+        nu.mul_add(x2, nv * y2) / sin2.max(tiny()),
+        (nu + nv) * R::from_f64(0.5),
+    )
+}
+
 /// The anisotropic Phong lobe of Ashikhmin and Shirley, normalized as an NDF.
 ///
 /// ```text
@@ -757,13 +771,7 @@ impl<R: Real> AshikhminShirley<R> {
     /// `cos^e θm` with `e = (nu x² + nv y²)/(x² + y²)`; zero below the horizon.
     #[inline(always)]
     fn lobe(&self, wm: Vec3<R>) -> R {
-        let (x2, y2) = (wm.x * wm.x, wm.y * wm.y);
-        let sin2 = x2 + y2;
-        let e = R::select(
-            sin2.gt(tiny()),
-            (self.nu * x2 + self.nv * y2) / sin2.max(tiny()),
-            (self.nu + self.nv) * R::from_f64(0.5),
-        );
+        let e = ashikhmin_shirley_exponent(self.nu, self.nv, wm);
         let v = wm.z.max(R::zero()).pow(e);
         R::select(wm.z.gt(R::zero()), v, R::zero())
     }
