@@ -117,6 +117,36 @@ macro_rules! ggx_schlick {
     };
 }
 
+/// Benchmarks `batch::eval_with` on every instruction set this CPU has, as `name/<Isa>`.
+fn bench_isas<B: Brdf<f32, C>, const C: usize>(
+    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    name: &str,
+    brdf: &B,
+    wi: &[Vec<f32>; 3],
+    wo: &[Vec<f32>; 3],
+    out: &mut [Vec<f32>; C],
+) {
+    for isa in Isa::ALL.into_iter().filter(|i| i.is_available()) {
+        g.bench_with_input(
+            BenchmarkId::new(name, format!("{isa:?}")),
+            &isa,
+            |b, &isa| {
+                b.iter(|| {
+                    let slices = out.each_mut().map(|c| c.as_mut_slice());
+                    batch::eval_with(
+                        isa,
+                        black_box(brdf),
+                        Directions::new(&wi[0], &wi[1], &wi[2]),
+                        Directions::new(&wo[0], &wo[1], &wo[2]),
+                        slices,
+                    )
+                    .unwrap()
+                })
+            },
+        );
+    }
+}
+
 fn bench_ggx_schlick(c: &mut Criterion) {
     let (wi, wo) = (directions(1), directions(7));
     let mut out = vec![0.0f32; N];
@@ -198,24 +228,8 @@ fn bench_ggx_schlick(c: &mut Criterion) {
     g.bench_function("f32x16", |b| {
         b.iter(|| lanes(black_box(&c16), &wi, &wo, &mut out))
     });
-    for isa in Isa::ALL.into_iter().filter(|i| i.is_available()) {
-        g.bench_with_input(
-            BenchmarkId::new("batch", format!("{isa:?}")),
-            &isa,
-            |b, &isa| {
-                b.iter(|| {
-                    batch::eval_with(
-                        isa,
-                        black_box(&ct),
-                        Directions::new(&wi[0], &wi[1], &wi[2]),
-                        Directions::new(&wo[0], &wo[1], &wo[2]),
-                        [&mut out],
-                    )
-                    .unwrap()
-                })
-            },
-        );
-    }
+    let mut out1 = [out];
+    bench_isas(&mut g, "batch", &ct, &wi, &wo, &mut out1);
     g.finish();
 }
 
@@ -241,25 +255,7 @@ fn bench_rough_conductor(c: &mut Criterion) {
     ));
     let mut g = c.benchmark_group("batch/rough_conductor");
     g.throughput(Throughput::Elements(N as u64));
-    for isa in Isa::ALL.into_iter().filter(|i| i.is_available()) {
-        g.bench_with_input(
-            BenchmarkId::new("batch", format!("{isa:?}")),
-            &isa,
-            |b, &isa| {
-                b.iter(|| {
-                    let [r, gr, bl] = &mut out;
-                    batch::eval_with(
-                        isa,
-                        black_box(&m),
-                        Directions::new(&wi[0], &wi[1], &wi[2]),
-                        Directions::new(&wo[0], &wo[1], &wo[2]),
-                        [r, gr, bl],
-                    )
-                    .unwrap()
-                })
-            },
-        );
-    }
+    bench_isas(&mut g, "batch", &m, &wi, &wo, &mut out);
     g.finish();
 }
 
@@ -268,7 +264,7 @@ fn bench_normalized_blinn_phong(c: &mut Criterion) {
     use brdf::models::{CosThetaI, NormalizedBlinnPhong};
     use brdf::normalization::Normalization;
     let (wi, wo) = (directions(5), directions(13));
-    let mut out = vec![0.0f32; N];
+    let out = vec![0.0f32; N];
     let exact = NormalizedBlinnPhong::<f32, 1, CosThetaI, ExactPow>::new(
         [0.5],
         0.5,
@@ -287,40 +283,9 @@ fn bench_normalized_blinn_phong(c: &mut Criterion) {
     .unwrap();
     let mut g = c.benchmark_group("batch/normalized_blinn_phong");
     g.throughput(Throughput::Elements(N as u64));
-    for isa in Isa::ALL.into_iter().filter(|i| i.is_available()) {
-        g.bench_with_input(
-            BenchmarkId::new("exact_pow", format!("{isa:?}")),
-            &isa,
-            |b, &isa| {
-                b.iter(|| {
-                    batch::eval_with(
-                        isa,
-                        black_box(&exact),
-                        Directions::new(&wi[0], &wi[1], &wi[2]),
-                        Directions::new(&wo[0], &wo[1], &wo[2]),
-                        [&mut out],
-                    )
-                    .unwrap()
-                })
-            },
-        );
-        g.bench_with_input(
-            BenchmarkId::new("fast_pow", format!("{isa:?}")),
-            &isa,
-            |b, &isa| {
-                b.iter(|| {
-                    batch::eval_with(
-                        isa,
-                        black_box(&fast),
-                        Directions::new(&wi[0], &wi[1], &wi[2]),
-                        Directions::new(&wo[0], &wo[1], &wo[2]),
-                        [&mut out],
-                    )
-                    .unwrap()
-                })
-            },
-        );
-    }
+    let mut out = [out];
+    bench_isas(&mut g, "exact_pow", &exact, &wi, &wo, &mut out);
+    bench_isas(&mut g, "fast_pow", &fast, &wi, &wo, &mut out);
     g.finish();
 }
 
