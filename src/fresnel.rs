@@ -119,7 +119,7 @@ pub struct Amplitudes<R> {
 impl<R: Real> Amplitudes<R> {
     /// Unpolarized reflectance `r = (r_s² + r_p²) / 2` (the seed's `r`, pbrt's
     /// `FrDielectric`). Equals `1` under total internal reflection.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn reflectance(&self) -> R {
         (self.r_s * self.r_s + self.r_p * self.r_p) * R::from_f64(0.5)
@@ -187,7 +187,15 @@ impl<R: Real> Amplitudes<R> {
 #[must_use]
 pub fn dielectric_amplitudes<R: Real>(cos_theta_i: R, eta: R) -> Amplitudes<R> {
     let eta = R::select(cos_theta_i.lt(R::zero()), eta.recip(), eta);
-    let c = cos_theta_i.abs().min(R::one());
+    oriented_amplitudes(cos_theta_i.abs(), eta)
+}
+
+/// The body of [`dielectric_amplitudes`] once the side is resolved: `c = |cos θi|` and the
+/// relative IOR `eta` seen from the incident side. [`Dielectric`] calls it directly (its
+/// cosines are never negative), so its `eval` spends no division on `1/eta`.
+#[inline(always)]
+fn oriented_amplitudes<R: Real>(c: R, eta: R) -> Amplitudes<R> {
+    let c = c.min(R::one());
     let g2 = (eta - R::one()).mul_add(eta + R::one(), c * c);
     let tir = g2.lt(R::zero());
     let g = g2.safe_sqrt();
@@ -886,7 +894,8 @@ impl<R: Real> Dielectric<R> {
 impl<R: Real, const N: usize> FresnelTerm<R, N> for Dielectric<R> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
-        [dielectric(cos_theta_d, self.eta); N]
+        // cos θd ∈ [0, 1] here: light always arrives from the outside of the microfacet.
+        [oriented_amplitudes(cos_theta_d.abs(), self.eta).reflectance(); N]
     }
 }
 
