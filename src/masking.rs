@@ -99,9 +99,15 @@ pub trait Masking<R: Real, D: Ndf<R>> {
     }
 
     /// The visibility as a fraction `(numerator, denominator)`, given also the unnormalized
-    /// half vector `h` (same direction as `wm`), so that a Cook-Torrance body divides once for
-    /// `D·V` (see [`crate::ndf::Ndf::d_fraction`]). The default is `(visibility(..), 1)`; the
-    /// Smith terms override it with `(χ⁺, 4·den)` and never need `wm` normalized.
+    /// half vector `h = wi + wo` (same direction as `wm`), so that a Cook-Torrance body
+    /// divides once for `D·V` (see [`crate::ndf::Ndf::d_fraction`]). The default is
+    /// `(visibility(..), 1)`; the Smith terms override it with `(1, 4·den)` and never need `wm`
+    /// normalized.
+    ///
+    /// Domain: unit `wi`, `wo` with `wi.z > 0`, `wo.z > 0` and `wm ∥ h = wi + wo` — the
+    /// reflection configuration. There `wi·wm = wo·wm = |wi + wo|/2 > 0` (the directions
+    /// cannot be opposite), so the microfacet visibility `χ⁺(wi·wm) χ⁺(wo·wm)` is 1 and the
+    /// Smith terms omit it; [`Masking::g2`] and [`Masking::visibility`] keep it for any `wm`.
     #[inline(always)]
     fn visibility_fraction(
         &self,
@@ -184,9 +190,9 @@ impl<R: Real, D: SmithLambda<R>> Masking<R, D> for SmithHeightCorrelated {
         _wm: Vec3<R>,
         h: Vec3<R>,
     ) -> (R, R) {
-        // `front` only reads signs, which `h` shares with `wm`.
+        let _ = h;
         let den = (R::from_f64(4.0) * ndf.height_correlated_den(wi, wo)).max(tiny());
-        (R::select(front(wi, wo, h), R::one(), R::zero()), den)
+        (R::one(), den)
     }
 }
 
@@ -239,9 +245,9 @@ impl<R: Real, D: SmithLambda<R>> Masking<R, D> for SmithSeparable {
         _wm: Vec3<R>,
         h: Vec3<R>,
     ) -> (R, R) {
+        let _ = h;
         let (gi, go) = (ndf.separable_den(wi), ndf.separable_den(wo));
-        let den = (R::from_f64(4.0) * gi * go).max(tiny());
-        (R::select(front(wi, wo, h), R::one(), R::zero()), den)
+        (R::one(), (R::from_f64(4.0) * gi * go).max(tiny()))
     }
 }
 

@@ -3,7 +3,7 @@
 
 use core::marker::PhantomData;
 
-use super::{Brdf, Energy, Properties, Reciprocity, half_and_cos_d, masked, safe_dirs};
+use super::{Brdf, Energy, Properties, Reciprocity, half_and_cos_d, masked, upper};
 use crate::fresnel::FresnelTerm;
 use crate::masking::Masking;
 use crate::ndf::Ndf;
@@ -21,8 +21,9 @@ use crate::{Real, Vec3};
 /// approximate visibility monomorphizes exactly that and pays for nothing else. The body
 /// calls `G::visibility`, which approximate terms override with their cheaper direct forms.
 ///
-/// Below the horizon the parts are evaluated on the normal (finite by construction) and the
-/// result is replaced by 0, so no part ever sees `cos θ ≤ 0`.
+/// Below the horizon the result is replaced by 0 with a final select; the parts still run
+/// on those lanes (branch-free) and may compute garbage there, which never reaches a
+/// result because every operation is lane-wise.
 ///
 /// Properties: reciprocal (D depends on `wm` only, `wi·wm = wo·wm`, and G2 is symmetric in
 /// the masking terms of this crate). Albedo ≤ 1 when `F ≤ 1` and G2 is a proper masking
@@ -71,7 +72,9 @@ where
 {
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
-        let (m, wi, wo) = safe_dirs(wi, wo);
+        // Lanes with a direction below the horizon compute garbage (possibly NaN) that the
+        // final select replaces by 0: every operation is lane-wise, so nothing leaks.
+        let m = upper(wi, wo);
         // cos θd = wi·wm = wo·wm, computed symmetrically as |wi + wo|/2.
         let (wm, cos_d) = half_and_cos_d(wi, wo);
         // D·V with a single division; NDFs written on the unnormalized half vector (GGX) never
