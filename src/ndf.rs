@@ -12,6 +12,7 @@
 //! | [`BlinnPhong`] | `(s + 2)/(2π) cosˢ θm` | shininess `s ∈ [0, MAX_SHININESS]` |
 //! | [`Beckmann`] | `exp(−(x²/αx² + y²/αy²)/z²) / (π αx αy z⁴)` | `alpha_x, alpha_y ∈ [MIN_ALPHA, MAX_ALPHA]` |
 //! | [`Ggx`] (Trowbridge-Reitz) | `1 / (π αx αy (x²/αx² + y²/αy² + z²)²)` | `alpha_x, alpha_y ∈ [MIN_ALPHA, MAX_ALPHA]` |
+//! | [`GgxIsotropic`] | the same with `αx = αy = α`, specialized | `alpha ∈ [MIN_ALPHA, MAX_ALPHA]` |
 //! | [`AshikhminShirley`] | `√((nu + 2)(nv + 2))/(2π) cos^e θm`, `e = (nu x² + nv y²)/(x² + y²)` | `nu, nv ∈ [0, MAX_SHININESS]` |
 //!
 //! (`wm = (x, y, z)` in the local frame, `z = cos θm`.) Each type is generic over
@@ -33,7 +34,7 @@
 //!
 //! # Smith Λ
 //!
-//! [`Ggx`] and [`Beckmann`] implement [`SmithLambda`] (exact, anisotropic through the
+//! [`Ggx`], [`GgxIsotropic`] and [`Beckmann`] implement [`SmithLambda`] (exact, anisotropic through the
 //! projected roughness) and [`ProjectedAlpha`]. The Beckmann Λ needs the error function: [`erf`]
 //! and [`erfc`] are lane-generic approximations whose error is stated on them.
 //!
@@ -283,8 +284,14 @@ macro_rules! alpha_ndf_ctors {
             pub fn from_lanes(alpha_x: R, alpha_y: R) -> Result<Self, Error> {
                 check_lanes("alpha_x", alpha_x, ALPHA_DOMAIN, MIN_ALPHA, MAX_ALPHA)?;
                 check_lanes("alpha_y", alpha_y, ALPHA_DOMAIN, MIN_ALPHA, MAX_ALPHA)?;
+                Ok(Self::from_valid(alpha_x, alpha_y))
+            }
+
+            /// The constants of already validated slope parameters.
+            #[inline]
+            fn from_valid(alpha_x: R, alpha_y: R) -> Self {
                 let (alpha_x2, alpha_y2) = (alpha_x * alpha_x, alpha_y * alpha_y);
-                Ok(Self {
+                Self {
                     alpha_x,
                     alpha_y,
                     alpha_x2,
@@ -292,7 +299,7 @@ macro_rules! alpha_ndf_ctors {
                     inv_alpha_x2: alpha_x2.recip(),
                     inv_alpha_y2: alpha_y2.recip(),
                     norm: R::frac_1_pi() / (alpha_x * alpha_y),
-                })
+                }
             }
 
             /// Slope parameter along the tangent (x).
@@ -345,58 +352,228 @@ macro_rules! alpha_ndf_ctors {
 alpha_ndf_ctors!(Ggx);
 alpha_ndf_ctors!(Beckmann);
 
-impl<R: Real> Ndf<R> for Ggx<R> {
-    #[inline(always)]
-    fn d(&self, wm: Vec3<R>) -> R {
-        let den = self.slope2_cos2(wm) + wm.z * wm.z;
-        let d = self.norm / (den * den).max(tiny());
-        R::select(wm.z.gt(R::zero()), d, R::zero())
-    }
+/// The quadratic forms in which [`Ggx`] and [`GgxIsotropic`] differ. The GGX formulas —
+/// `D`, `Λ` and the visibility denominators — are written once on top of them
+/// (the private `ggx_formulas!` macro), so the isotropic type is the same body with cheaper forms.
+trait GgxForms<R: Real> {
+    /// `1/(π αx αy)`.
+    fn norm(&self) -> R;
+    /// `x²/αx² + y²/αy²` of a (possibly unnormalized) `v`: the stretched slope part of the
+    /// `D` denominator.
+    fn slope2_cos2(&self, v: Vec3<R>) -> R;
+    /// `s = x² αx² + y² αy²` = `(α(w) sin θ)²`.
+    fn stretched_sin2(&self, w: Vec3<R>) -> R;
+    /// `cos²θ + s` of a unit `w`, the radicand of the visibility denominators.
+    fn root2(&self, w: Vec3<R>) -> R;
+}
 
-    /// `x²/αx² + y²/αy² + z²` is homogeneous of degree 2, so on `h = |h|·wm` the stretched
-    /// denominator is `len2` times that of `wm`: `D = norm·len2² / (stretched(h))²`.
+impl<R: Real> GgxForms<R> for Ggx<R> {
     #[inline(always)]
-    fn d_fraction(&self, _wm: Vec3<R>, h: Vec3<R>, len2: R) -> (R, R) {
-        let den = self.slope2_cos2(h) + h.z * h.z;
-        let num = R::select(h.z.gt(R::zero()), self.norm * len2 * len2, R::zero());
-        (num, (den * den).max(tiny()))
+    fn norm(&self) -> R {
+        self.norm
+    }
+    #[inline(always)]
+    fn slope2_cos2(&self, v: Vec3<R>) -> R {
+        Ggx::slope2_cos2(self, v)
+    }
+    #[inline(always)]
+    fn stretched_sin2(&self, w: Vec3<R>) -> R {
+        Ggx::stretched_sin2(self, w)
+    }
+    #[inline(always)]
+    fn root2(&self, w: Vec3<R>) -> R {
+        w.z * w.z + Ggx::stretched_sin2(self, w)
     }
 }
 
-impl<R: Real> SmithLambda<R> for Ggx<R> {
-    /// `Λ = (√(1 + t) − 1)/2 = t / (2 (1 + √(1 + t)))`, `t = α(w)² tan²θ`, written without
-    /// cancellation; `cos θ` is floored at 1e-15 so that `Λ(grazing)` is large but finite.
-    #[inline(always)]
-    fn lambda(&self, w: Vec3<R>) -> R {
-        let t = self.stretched_sin2(w) / (w.z * w.z).max(tiny());
-        t / (R::from_f64(2.0) * (R::one() + (R::one() + t).sqrt()))
+/// The GGX `Ndf` and `SmithLambda` bodies, on the forms of [`GgxForms`].
+macro_rules! ggx_formulas {
+    ($t:ident) => {
+        impl<R: Real> Ndf<R> for $t<R> {
+            #[inline(always)]
+            fn d(&self, wm: Vec3<R>) -> R {
+                let den = GgxForms::slope2_cos2(self, wm) + wm.z * wm.z;
+                let d = GgxForms::norm(self) / (den * den).max(tiny());
+                R::select(wm.z.gt(R::zero()), d, R::zero())
+            }
+
+            /// `x²/αx² + y²/αy² + z²` is homogeneous of degree 2, so on `h = |h|·wm` the
+            /// stretched denominator is `len2` times that of `wm`:
+            /// `D = norm·len2² / (stretched(h))²`.
+            #[inline(always)]
+            fn d_fraction(&self, _wm: Vec3<R>, h: Vec3<R>, len2: R) -> (R, R) {
+                let den = GgxForms::slope2_cos2(self, h) + h.z * h.z;
+                let num = R::select(
+                    h.z.gt(R::zero()),
+                    GgxForms::norm(self) * len2 * len2,
+                    R::zero(),
+                );
+                (num, (den * den).max(tiny()))
+            }
+        }
+
+        impl<R: Real> SmithLambda<R> for $t<R> {
+            /// `Λ = (√(1 + t) − 1)/2 = t / (2 (1 + √(1 + t)))`, `t = α(w)² tan²θ`, written
+            /// without cancellation; `cos θ` is floored at 1e-15 so that `Λ(grazing)` is large
+            /// but finite.
+            #[inline(always)]
+            fn lambda(&self, w: Vec3<R>) -> R {
+                let t = GgxForms::stretched_sin2(self, w) / (w.z * w.z).max(tiny());
+                t / (R::from_f64(2.0) * (R::one() + (R::one() + t).sqrt()))
+            }
+
+            /// `cos θ Λ = (√(cos²θ + α(w)² sin²θ) − cos θ)/2 = s / (2 (√(cos²θ + s) + cos θ))`,
+            /// `s = x² αx² + y² αy²`; `α(w) sin θ / 2` at grazing.
+            #[inline(always)]
+            fn cos_lambda(&self, w: Vec3<R>) -> R {
+                let s = GgxForms::stretched_sin2(self, w);
+                let c = w.z.abs();
+                s / (R::from_f64(2.0) * ((c * c + s).sqrt() + c)).max(tiny())
+            }
+
+            /// `(cos θo √(cos²θi + sᵢ) + cos θi √(cos²θo + sₒ))/2`: see
+            /// [`SmithLambda::height_correlated_den`] (Heitz 2014's height-correlated G2 with
+            /// GGX's `Λ = (√(1 + α² tan²θ) − 1)/2`; the division-free form is the one in
+            /// Filament's docs). Unit `wi`, `wo`.
+            #[inline(always)]
+            fn height_correlated_den(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
+                let (ci, co) = (wi.z.max(R::zero()), wo.z.max(R::zero()));
+                let root_i = GgxForms::root2(self, wi).sqrt();
+                let root_o = GgxForms::root2(self, wo).sqrt();
+                (co * root_i + ci * root_o) * R::from_f64(0.5)
+            }
+
+            /// `(cos θ + √(cos²θ + s))/2`: see [`SmithLambda::separable_den`]. Unit `w`.
+            #[inline(always)]
+            fn separable_den(&self, w: Vec3<R>) -> R {
+                let c = w.z.max(R::zero());
+                (c + GgxForms::root2(self, w).sqrt()) * R::from_f64(0.5)
+            }
+        }
+    };
+}
+
+ggx_formulas!(Ggx);
+ggx_formulas!(GgxIsotropic);
+
+/// The isotropic GGX distribution: [`Ggx`] with `αx = αy = α`, specialized.
+///
+/// ```text
+/// D(wm) = 1 / (π α² ((x² + y²)/α² + z²)²)
+/// Λ(w)  = (−1 + √(1 + α² tan²θ)) / 2
+/// √(cos²θ + α² sin²θ) = √(α² + (1 − α²) cos²θ)        (the visibility radicand, unit w)
+/// ```
+///
+/// The same formulas as [`Ggx`] (one body, written once for both types); what it saves is the
+/// anisotropic bookkeeping: the visibility radicand is one multiply-add of `cos²θ`, the
+/// projected roughness of [`ProjectedAlpha`] is the constant `α` (no square root, no
+/// division), and fewer constants are live in registers. A scene whose materials are all
+/// isotropic — most are — should use it; the values agree with `Ggx::new(alpha)` to a few
+/// ULP (tested).
+///
+/// Domain: `alpha ∈ [1e-4, 1]` (see the [module docs](self)); directions are unit vectors.
+///
+/// References: T. S. Trowbridge, K. P. Reitz, JOSA 1975; B. Walter et al., EGSR 2007 (§5).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::{Vec3, ndf::{Ggx, GgxIsotropic, Ndf, SmithLambda}};
+///
+/// let iso = GgxIsotropic::<f64>::new(0.3).unwrap();
+/// let ggx = Ggx::<f64>::new(0.3).unwrap();
+/// let w = Vec3::new(0.6, 0.0, 0.8);
+/// assert!((iso.d(w) - ggx.d(w)).abs() < 1e-12 * ggx.d(w));
+/// assert!((iso.g1(w) - ggx.g1(w)).abs() < 1e-15);
+/// assert_eq!(Ggx::from(iso), ggx);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GgxIsotropic<R> {
+    alpha: R,
+    alpha2: R,
+    one_minus_alpha2: R,
+    inv_alpha2: R,
+    /// `1/(π α²)`.
+    norm: R,
+}
+
+impl<R: Real> GgxIsotropic<R> {
+    /// The distribution with slope parameter `alpha ∈ [1e-4, 1]`.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] or [`Error::OutOfDomain`] for `alpha` outside `[1e-4, 1]`.
+    #[inline]
+    pub fn new(alpha: R::Scalar) -> Result<Self, Error> {
+        Self::from_lanes(R::splat(alpha))
     }
 
-    /// `cos θ Λ = (√(cos²θ + α(w)² sin²θ) − cos θ)/2 = s / (2 (√(cos²θ + s) + cos θ))`,
-    /// `s = x² αx² + y² αy²`; `α(w) sin θ / 2` at grazing.
-    #[inline(always)]
-    fn cos_lambda(&self, w: Vec3<R>) -> R {
-        let s = self.stretched_sin2(w);
-        let c = w.z.abs();
-        s / (R::from_f64(2.0) * ((c * c + s).sqrt() + c)).max(tiny())
+    /// From perceptual roughness `roughness ∈ [0.01, 1]`, `alpha = roughness²`.
+    ///
+    /// # Errors
+    /// As [`Self::new`] for the resulting `alpha`.
+    #[inline]
+    pub fn from_roughness(roughness: R::Scalar) -> Result<Self, Error> {
+        Self::new(roughness * roughness)
     }
 
-    /// `(cos θo √(cos²θi + sᵢ) + cos θi √(cos²θo + sₒ))/2`: see
-    /// [`SmithLambda::height_correlated_den`] (Heitz 2014's height-correlated G2 with GGX's
-    /// `Λ = (√(1 + α² tan²θ) − 1)/2`; the division-free form is the one in Filament's docs).
-    #[inline(always)]
-    fn height_correlated_den(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
-        let (ci, co) = (wi.z.max(R::zero()), wo.z.max(R::zero()));
-        let root_i = (wi.z * wi.z + self.stretched_sin2(wi)).sqrt();
-        let root_o = (wo.z * wo.z + self.stretched_sin2(wo)).sqrt();
-        (co * root_i + ci * root_o) * R::from_f64(0.5)
+    /// One (possibly different) material per lane, each validated as in [`Self::new`].
+    ///
+    /// # Errors
+    /// The first offending lane's `alpha`.
+    #[inline]
+    pub fn from_lanes(alpha: R) -> Result<Self, Error> {
+        check_lanes("alpha", alpha, ALPHA_DOMAIN, MIN_ALPHA, MAX_ALPHA)?;
+        let alpha2 = alpha * alpha;
+        Ok(Self {
+            alpha,
+            alpha2,
+            one_minus_alpha2: R::one() - alpha2,
+            inv_alpha2: alpha2.recip(),
+            norm: R::frac_1_pi() / alpha2,
+        })
     }
 
-    /// `(cos θ + √(cos²θ + s))/2`: see [`SmithLambda::separable_den`].
+    /// The slope parameter `α`.
+    #[inline]
+    #[must_use]
+    pub fn alpha(&self) -> R {
+        self.alpha
+    }
+}
+
+impl<R: Real> GgxForms<R> for GgxIsotropic<R> {
     #[inline(always)]
-    fn separable_den(&self, w: Vec3<R>) -> R {
-        let c = w.z.max(R::zero());
-        (c + (w.z * w.z + self.stretched_sin2(w)).sqrt()) * R::from_f64(0.5)
+    fn norm(&self) -> R {
+        self.norm
+    }
+    #[inline(always)]
+    fn slope2_cos2(&self, v: Vec3<R>) -> R {
+        (v.x * v.x + v.y * v.y) * self.inv_alpha2
+    }
+    #[inline(always)]
+    fn stretched_sin2(&self, w: Vec3<R>) -> R {
+        (w.x * w.x + w.y * w.y) * self.alpha2
+    }
+    /// `cos²θ + α² sin²θ = α² + (1 − α²) cos²θ` for a unit `w`.
+    #[inline(always)]
+    fn root2(&self, w: Vec3<R>) -> R {
+        (w.z * w.z).mul_add(self.one_minus_alpha2, self.alpha2)
+    }
+}
+
+impl<R: Real> ProjectedAlpha<R> for GgxIsotropic<R> {
+    /// `α`, whatever `w`.
+    #[inline(always)]
+    fn projected_alpha(&self, _w: Vec3<R>) -> R {
+        self.alpha
+    }
+}
+
+impl<R: Real> From<GgxIsotropic<R>> for Ggx<R> {
+    /// The same distribution as an (anisotropic-capable) [`Ggx`] with `αx = αy = α`.
+    #[inline]
+    fn from(iso: GgxIsotropic<R>) -> Self {
+        Ggx::from_valid(iso.alpha, iso.alpha)
     }
 }
 
