@@ -23,7 +23,7 @@ use core::marker::PhantomData;
 
 use super::{
     Brdf, DENOM_FLOOR, Energy, Properties, Reciprocity, half_and_cos_d, masked, safe_dirs,
-    splat_channels, unit_channels,
+    splat_channels, unit_channels, upper,
 };
 use crate::fast::{ExactPow, PowFn};
 use crate::normalization::{Normalization, TRI_ACE_OFFSET};
@@ -217,7 +217,8 @@ impl SpecularDenominator for MaxCos {
 pub struct NormalizedBlinnPhongSpecular<R, const N: usize, V = CosThetaI, P = ExactPow> {
     rs_c: R,
     f0: [R; N],
-    shininess: R,
+    /// `s/2`: the lobe is evaluated as `(cos²θm)^(s/2)`.
+    half_shininess: R,
     normalization: Normalization,
     _v: PhantomData<(V, P)>,
 }
@@ -244,7 +245,7 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn>
         Ok(Self {
             rs_c: R::from_f64(rs * normalization.factor(s)),
             f0: splat_channels(f0),
-            shininess: R::from_f64(s),
+            half_shininess: R::from_f64(0.5 * s),
             normalization,
             _v: PhantomData,
         })
@@ -263,9 +264,19 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
 {
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
-        let (m, wi, wo) = safe_dirs(wi, wo);
-        let (wm, cos_d) = half_and_cos_d(wi, wo);
-        let lobe = self.rs_c * P::pow(wm.z.saturate(), self.shininess) / V::denom(wi.z, wo.z);
+        // Lanes below the horizon compute garbage that the final select replaces by 0.
+        let m = upper(wi, wo);
+        // h = wi + wo; cos θd = |h|/2 (as in `half_and_cos_d`) feeds only the Fresnel term.
+        let h = wi + wo;
+        let len2 = h.length_squared();
+        let cos_d = (len2.sqrt() * R::from_f64(0.5)).min(R::one());
+        // The lobe takes no square root: (cos θm)^s = (cos²θm)^(s/2), cos²θm = h.z²/|h|².
+        // One division serves both 1/|h|² and 1/V: inv = 1/(|h|² V), so cos²θm = h.z²·V·inv
+        // and 1/V = |h|²·inv (|h| > 0 above the horizon, V ≥ DENOM_FLOOR).
+        let v = V::denom(wi.z, wo.z);
+        let inv = (len2 * v).max(R::from_f64(1e-30)).recip();
+        let cos2_m = (h.z * h.z * v * inv).saturate();
+        let lobe = self.rs_c * P::pow(cos2_m, self.half_shininess) * (len2 * inv);
         masked(m, {
             let f = schlick_channels(&self.f0, cos_d);
             crate::real::channels(|c| f[c] * lobe)
@@ -347,7 +358,7 @@ impl<R: Real, const N: usize> CoupledLambert<R, N> {
 impl<R: Real, const N: usize> Brdf<R, N> for CoupledLambert<R, N> {
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
-        let (m, wi, _) = safe_dirs(wi, wo);
+        let m = upper(wi, wo);
         let f = schlick_channels(&self.f0, wi.z);
         let r: [R; N] =
             crate::real::channels(|c| self.rd_over_pi[c] * (-self.rs).mul_add(f[c], R::one()));
