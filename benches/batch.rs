@@ -17,7 +17,7 @@ use brdf::batch::{self, Directions, Isa};
 use brdf::fresnel::{Conductor, Schlick};
 use brdf::masking::{SmithHeightCorrelated, SmithSeparable};
 use brdf::models::CookTorrance;
-use brdf::ndf::Ggx;
+use brdf::ndf::{Ggx, GgxIsotropic};
 use brdf::{Brdf, Real, Vec3, f32x4, f32x8, f32x16, ior};
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 
@@ -110,7 +110,7 @@ fn lanes<L: Real<Scalar = f32>, B: Brdf<L, C>, const C: usize>(
 macro_rules! ggx_schlick {
     ($r:ty) => {
         CookTorrance::new(
-            Ggx::<$r>::new(0.3).unwrap(),
+            GgxIsotropic::<$r>::new(0.3).unwrap(),
             Schlick::<$r, 1>::new([0.04]).unwrap(),
             SmithHeightCorrelated,
         )
@@ -226,6 +226,20 @@ fn bench_ggx_schlick(c: &mut Criterion) {
     });
     let mut out1 = [out];
     bench_isas(&mut g, "batch", &ct, &wi, &wo, &mut out1);
+    // The anisotropy-capable `Ggx` type with αx = αy: the price of not specializing.
+    let aniso = CookTorrance::new(
+        Ggx::<f32>::new(0.3).unwrap(),
+        Schlick::<f32, 1>::new([0.04]).unwrap(),
+        SmithHeightCorrelated,
+    );
+    bench_isas(
+        &mut g,
+        "batch_anisotropic_type",
+        &aniso,
+        &wi,
+        &wo,
+        &mut out1,
+    );
     g.finish();
 }
 
@@ -245,7 +259,7 @@ fn bench_rough_conductor(c: &mut Criterion) {
     let (wi, wo) = (directions(3), directions(11));
     let mut out = [vec![0.0f32; N], vec![0.0f32; N], vec![0.0f32; N]];
     let m = TimesCos(CookTorrance::new(
-        Ggx::<f32>::new(0.2).unwrap(),
+        GgxIsotropic::<f32>::new(0.2).unwrap(),
         Conductor::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB),
         SmithSeparable,
     ));
