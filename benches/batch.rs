@@ -13,7 +13,7 @@
 //!   (≥ 0.7 G evaluations/s).
 use std::hint::black_box;
 
-use brdf::batch::{self, Directions, Isa};
+use brdf::batch::{self, Directions, Isa, Pipelined};
 use brdf::fresnel::{Conductor, Schlick};
 use brdf::masking::{SmithHeightCorrelated, SmithSeparable};
 use brdf::models::CookTorrance;
@@ -117,10 +117,15 @@ macro_rules! ggx_schlick {
     };
 }
 
-/// Benchmarks `batch::eval_with` on every instruction set this CPU has, as `name/<Isa>`.
-fn bench_isas<B: Brdf<f32, C>, const C: usize>(
+/// One batch entry point: `batch::eval_with` or `batch::eval_pipelined_with`.
+type Entry<B, const C: usize> =
+    fn(Isa, &B, Directions<'_>, Directions<'_>, [&mut [f32]; C]) -> Result<(), batch::Unavailable>;
+
+/// Benchmarks `entry` on every instruction set this CPU has, as `name/<Isa>`.
+fn bench_isas<B, const C: usize>(
     g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
     name: &str,
+    entry: Entry<B, C>,
     brdf: &B,
     wi: &[Vec<f32>; 3],
     wo: &[Vec<f32>; 3],
@@ -133,7 +138,7 @@ fn bench_isas<B: Brdf<f32, C>, const C: usize>(
             |b, &isa| {
                 b.iter(|| {
                     let slices = out.each_mut().map(|c| c.as_mut_slice());
-                    batch::eval_with(
+                    entry(
                         isa,
                         black_box(brdf),
                         Directions::new(&wi[0], &wi[1], &wi[2]),
@@ -225,7 +230,9 @@ fn bench_ggx_schlick(c: &mut Criterion) {
         b.iter(|| lanes(black_box(&c16), &wi, &wo, &mut out))
     });
     let mut out1 = [out];
-    bench_isas(&mut g, "batch", &ct, &wi, &wo, &mut out1);
+    bench_isas(&mut g, "batch", batch::eval_with, &ct, &wi, &wo, &mut out1);
+    let piped = batch::eval_pipelined_with;
+    bench_isas(&mut g, "batch_pipelined", piped, &ct, &wi, &wo, &mut out1);
     // The anisotropy-capable `Ggx` type with αx = αy: the price of not specializing.
     let aniso = CookTorrance::new(
         Ggx::<f32>::new(0.3).unwrap(),
@@ -235,6 +242,7 @@ fn bench_ggx_schlick(c: &mut Criterion) {
     bench_isas(
         &mut g,
         "batch_anisotropic_type",
+        batch::eval_with,
         &aniso,
         &wi,
         &wo,
@@ -254,6 +262,17 @@ impl<R: Real, B: Brdf<R, 3>> Brdf<R, 3> for TimesCos<B> {
         self.0.properties()
     }
 }
+impl<B: Pipelined<3>> Pipelined<3> for TimesCos<B> {
+    #[inline(always)]
+    fn eval_passes(&self, wi: Directions<'_>, wo: Directions<'_>, mut out: [&mut [f32]; 3]) {
+        self.0.eval_passes(wi, wo, out.each_mut().map(|o| &mut **o));
+        for o in out {
+            for (o, z) in o.iter_mut().zip(wo.z) {
+                *o *= z;
+            }
+        }
+    }
+}
 
 fn bench_rough_conductor(c: &mut Criterion) {
     let (wi, wo) = (directions(3), directions(11));
@@ -265,7 +284,9 @@ fn bench_rough_conductor(c: &mut Criterion) {
     ));
     let mut g = c.benchmark_group("batch/rough_conductor");
     g.throughput(Throughput::Elements(N as u64));
-    bench_isas(&mut g, "batch", &m, &wi, &wo, &mut out);
+    bench_isas(&mut g, "batch", batch::eval_with, &m, &wi, &wo, &mut out);
+    let piped = batch::eval_pipelined_with;
+    bench_isas(&mut g, "batch_pipelined", piped, &m, &wi, &wo, &mut out);
     g.finish();
 }
 
@@ -294,8 +315,34 @@ fn bench_normalized_blinn_phong(c: &mut Criterion) {
     let mut g = c.benchmark_group("batch/normalized_blinn_phong");
     g.throughput(Throughput::Elements(N as u64));
     let mut out = [out];
-    bench_isas(&mut g, "exact_pow", &exact, &wi, &wo, &mut out);
-    bench_isas(&mut g, "fast_pow", &fast, &wi, &wo, &mut out);
+    bench_isas(
+        &mut g,
+        "exact_pow",
+        batch::eval_with,
+        &exact,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    bench_isas(
+        &mut g,
+        "fast_pow",
+        batch::eval_with,
+        &fast,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    let piped = batch::eval_pipelined_with;
+    bench_isas(
+        &mut g,
+        "fast_pow_pipelined",
+        piped,
+        &fast,
+        &wi,
+        &wo,
+        &mut out,
+    );
     g.finish();
 }
 

@@ -483,7 +483,22 @@ pub fn log2<const D: usize, R: Real>(x: R) -> R {
 #[inline]
 #[must_use]
 pub fn pow<const L: usize, const E: usize, R: Real>(x: R, y: R) -> R {
-    let t = y * log2::<L, R>(x);
+    pow_finish::<E, R>(pow_start::<L, R>(x, y), y)
+}
+
+/// The first stage of [`pow`]: `t = y · log2_L(x)`. `pow::<L, E>(x, y)` is exactly
+/// `pow_finish::<E>(pow_start::<L>(x, y), y)`; the split lets a batch kernel run the two
+/// halves of the dependency chain as separate passes (see [`crate::batch::Pipelined`]).
+#[inline(always)]
+#[must_use]
+pub fn pow_start<const L: usize, R: Real>(x: R, y: R) -> R {
+    y * log2::<L, R>(x)
+}
+
+/// The second stage of [`pow`]: `exp2_E(t)`, and `1` for `y = 0` (so `0⁰ = 1`).
+#[inline(always)]
+#[must_use]
+pub fn pow_finish<const E: usize, R: Real>(t: R, y: R) -> R {
     R::select(y.eq(R::zero()), R::one(), exp2::<E, R>(t))
 }
 
@@ -549,11 +564,7 @@ pub fn rsqrt<const N: usize, R: Real>(x: R) -> R {
 #[inline(always)]
 #[must_use]
 pub fn pow_phong<R: Real>(x: R, y: R) -> R {
-    if single::<R>() {
-        pow::<9, 5, R>(x, y)
-    } else {
-        pow::<9, 4, R>(x, y)
-    }
+    FastPow::finish(FastPow::start(x, y), y)
 }
 
 /// How a model raises a cosine to its exponent, chosen at compile time (a type parameter of
@@ -564,28 +575,51 @@ pub fn pow_phong<R: Real>(x: R, y: R) -> R {
 /// * [`FastPow`]: [`pow_phong`] — relative error ≤ 1e-5 for results ≥ 1e-20 (f32) and
 ///   everywhere in f64 (see the module docs), branch-free, no library call: it vectorizes.
 pub trait PowFn: Copy + core::fmt::Debug + Default + Send + Sync + 'static {
-    /// `xʸ` for `x ∈ [0, 1]`, `y ≥ 0` (`0⁰ = 1`).
-    fn pow<R: Real>(x: R, y: R) -> R;
+    /// `xʸ` for `x ∈ [0, 1]`, `y ≥ 0` (`0⁰ = 1`): `finish(start(x, y), y)`.
+    #[inline(always)]
+    fn pow<R: Real>(x: R, y: R) -> R {
+        Self::finish(Self::start(x, y), y)
+    }
+
+    /// The first half of `pow`'s dependency chain (for [`FastPow`]: `y · log₂ x`).
+    fn start<R: Real>(x: R, y: R) -> R;
+
+    /// The second half: `pow(x, y) = finish(start(x, y), y)`.
+    fn finish<R: Real>(t: R, y: R) -> R;
 }
 
-/// [`PowFn`] through [`Real::pow`] (the library `powf`).
+/// [`PowFn`] through [`Real::pow`] (the library `powf`); its stages are the identity and
+/// `powf` itself.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ExactPow;
 
 impl PowFn for ExactPow {
     #[inline(always)]
-    fn pow<R: Real>(x: R, y: R) -> R {
-        x.pow(y)
+    fn start<R: Real>(x: R, _y: R) -> R {
+        x
+    }
+    #[inline(always)]
+    fn finish<R: Real>(t: R, y: R) -> R {
+        t.pow(y)
     }
 }
 
-/// [`PowFn`] through [`pow_phong`] (polynomial, relative error ≤ 1e-5 on the Phong domain).
+/// [`PowFn`] through [`pow_phong`] (polynomial, relative error ≤ 1e-5 on the Phong domain);
+/// its stages are [`pow_start`] and [`pow_finish`] with `pow_phong`'s degrees.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FastPow;
 
 impl PowFn for FastPow {
     #[inline(always)]
-    fn pow<R: Real>(x: R, y: R) -> R {
-        pow_phong(x, y)
+    fn start<R: Real>(x: R, y: R) -> R {
+        pow_start::<9, R>(x, y)
+    }
+    #[inline(always)]
+    fn finish<R: Real>(t: R, y: R) -> R {
+        if single::<R>() {
+            pow_finish::<5, R>(t, y)
+        } else {
+            pow_finish::<4, R>(t, y)
+        }
     }
 }

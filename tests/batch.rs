@@ -1,11 +1,17 @@
-//! The batch path: every instruction-set variant this CPU can run equals the scalar `eval`.
+//! The batch path: every instruction-set variant this CPU can run, per-pair and pipelined,
+//! equals the scalar `eval` bit for bit.
 mod common;
 
 use brdf::batch::{self, Directions, Isa};
+use brdf::fast::{ExactPow, FastPow};
 use brdf::fresnel::{Conductor, Schlick};
 use brdf::masking::{SmithHeightCorrelated, SmithSeparable};
-use brdf::models::{CookTorrance, Lambert, Sum};
-use brdf::ndf::Ggx;
+use brdf::models::{
+    CookTorrance, CosThetaI, Lambert, MaxCos, NormalizedBlinnPhong, NormalizedBlinnPhongSpecular,
+    Sum,
+};
+use brdf::ndf::{Ggx, GgxIsotropic};
+use brdf::normalization::Normalization;
 use brdf::{Brdf, Vec3, ior};
 
 /// `n` direction pairs by warping a deterministic low-discrepancy sequence over the
@@ -29,13 +35,17 @@ fn pairs(n: usize) -> [Vec<f32>; 6] {
     v
 }
 
-/// Runs every available variant and compares with `eval` on `f32`, returning the worst
-/// relative difference (FMA contraction in the wide variants may change the last bits).
-fn check<B: Brdf<f32, N>, const N: usize>(brdf: &B, n: usize) -> f32 {
+/// A batch entry point: `batch::eval_with` or `batch::eval_pipelined_with`.
+type Entry<B, const N: usize> =
+    fn(Isa, &B, Directions<'_>, Directions<'_>, [&mut [f32]; N]) -> Result<(), batch::Unavailable>;
+
+/// Runs every available variant of `entry` on `n` pairs and requires the scalar `eval` on
+/// `f32` bit for bit (`mul_add` fuses only with compile-time FMA, and then everywhere).
+/// Returns how many variants ran.
+fn check_entry<B: Brdf<f32, N>, const N: usize>(brdf: &B, n: usize, entry: Entry<B, N>) -> usize {
     let d = pairs(n);
     let wi = Directions::new(&d[0], &d[1], &d[2]);
     let wo = Directions::new(&d[3], &d[4], &d[5]);
-    let mut worst = 0.0f32;
     let mut ran = 0;
     for isa in Isa::ALL {
         let mut out = vec![vec![f32::NAN; n]; N];
@@ -43,7 +53,7 @@ fn check<B: Brdf<f32, N>, const N: usize>(brdf: &B, n: usize) -> f32 {
             let mut it = out.iter_mut();
             core::array::from_fn(|_| it.next().unwrap().as_mut_slice())
         };
-        match batch::eval_with(isa, brdf, wi, wo, slices) {
+        match entry(isa, brdf, wi, wo, slices) {
             Err(e) => {
                 assert!(!isa.is_available(), "{e}");
                 continue;
@@ -58,17 +68,32 @@ fn check<B: Brdf<f32, N>, const N: usize>(brdf: &B, n: usize) -> f32 {
             for c in 0..N {
                 let (a, b) = (out[c][i], f[c]);
                 assert!(a.is_finite(), "{isa:?} produced {a} at {i}");
-                let rel = (a - b).abs() / b.abs().max(1e-6);
-                assert!(
-                    rel <= 2e-5,
+                assert_eq!(
+                    a.to_bits(),
+                    b.to_bits(),
                     "{isa:?} channel {c} at {i}: batch {a} vs scalar {b}"
                 );
-                worst = worst.max(rel);
             }
         }
     }
     assert!(ran >= 1 && Isa::detect().is_available());
-    worst
+    ran
+}
+
+/// [`check_entry`] with the per-pair loop.
+fn check<B: Brdf<f32, N>, const N: usize>(brdf: &B, n: usize) -> usize {
+    check_entry(brdf, n, batch::eval_with)
+}
+
+/// [`check_entry`] with both loops, for a model with a pipelined evaluation, at lengths that
+/// cover an empty batch, a single pair, a partial block and several blocks plus a tail.
+fn check_pipelined<B: batch::Pipelined<N>, const N: usize>(brdf: &B) {
+    for n in [0, 1, 1031, 2 * batch::BLOCK + 517] {
+        eprintln!("per-pair {n}");
+        check(brdf, n);
+        eprintln!("pipelined {n}");
+        check_entry(brdf, n, batch::eval_pipelined_with);
+    }
 }
 
 #[test]
@@ -79,8 +104,7 @@ fn every_available_variant_matches_scalar_ggx_schlick() {
         SmithHeightCorrelated,
     );
     // 1031: not a multiple of any lane width, so the scalar tail runs too.
-    let w = check(&ct, 1031);
-    println!("GGX/Schlick worst relative difference: {w:e}");
+    check(&ct, 1031);
 }
 
 #[test]
@@ -91,8 +115,49 @@ fn every_available_variant_matches_scalar_rough_conductor_rgb() {
         SmithSeparable,
     );
     let sum = Sum::new(ct, Lambert::<f32, 3>::new([0.1, 0.2, 0.3]).unwrap());
-    let w = check(&sum, 517);
-    println!("rough conductor + Lambert worst relative difference: {w:e}");
+    check(&sum, 517);
+}
+
+#[test]
+fn pipelined_cook_torrance_matches_scalar() {
+    check_pipelined(&CookTorrance::new(
+        GgxIsotropic::<f32>::new(0.3).unwrap(),
+        Schlick::<f32, 1>::new([0.04]).unwrap(),
+        SmithHeightCorrelated,
+    ));
+    check_pipelined(&CookTorrance::new(
+        Ggx::<f32>::anisotropic(0.05, 0.4).unwrap(),
+        Conductor::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB),
+        SmithSeparable,
+    ));
+}
+
+#[test]
+fn pipelined_normalized_blinn_phong_matches_scalar() {
+    let fit = Normalization::TRI_ACE_2009_FIT;
+    check_pipelined(
+        &NormalizedBlinnPhong::<f32, 1, CosThetaI, FastPow>::new([0.5], 0.5, [0.04], 64.0, fit)
+            .unwrap(),
+    );
+    check_pipelined(
+        &NormalizedBlinnPhong::<f32, 3, MaxCos, ExactPow>::new(
+            [0.2, 0.5, 0.7],
+            0.8,
+            [0.04, 0.05, 0.9],
+            1e4,
+            Normalization::TriAceExact,
+        )
+        .unwrap(),
+    );
+    check_pipelined(
+        &NormalizedBlinnPhongSpecular::<f32, 3, CosThetaI, FastPow>::new(
+            1.0,
+            [0.04, 0.5, 1.0],
+            0.0,
+            fit,
+        )
+        .unwrap(),
+    );
 }
 
 #[test]

@@ -257,13 +257,12 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn>
     pub fn normalization(&self) -> Normalization {
         self.normalization
     }
-}
 
-impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
-    for NormalizedBlinnPhongSpecular<R, N, V, P>
-{
+    /// The lobe without its power: `(cos²θm, k)` with `f_c = (cos²θm)^(s/2) · k_c`,
+    /// `k_c = R_s c(s) F_c / V`, and `k = 0` below the horizon. Shared by `eval` and the
+    /// pipelined batch passes (one body).
     #[inline(always)]
-    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+    fn lobe_parts(&self, wi: Vec3<R>, wo: Vec3<R>) -> (R, [R; N]) {
         // Lanes below the horizon compute garbage that the final select replaces by 0.
         let m = upper(wi, wo);
         // h = wi + wo; cos θd = |h|/2 (as in `half_and_cos_d`) feeds only the Fresnel term.
@@ -276,11 +275,20 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
         let v = V::denom(wi.z, wo.z);
         let inv = (len2 * v).max(R::from_f64(1e-30)).recip();
         let cos2_m = (h.z * h.z * v * inv).saturate();
-        let lobe = self.rs_c * P::pow(cos2_m, self.half_shininess) * (len2 * inv);
-        masked(m, {
-            let f = schlick_channels(&self.f0, cos_d);
-            crate::real::channels(|c| f[c] * lobe)
-        })
+        let scale = self.rs_c * (len2 * inv);
+        let f = schlick_channels(&self.f0, cos_d);
+        (cos2_m, masked(m, crate::real::channels(|c| f[c] * scale)))
+    }
+}
+
+impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
+    for NormalizedBlinnPhongSpecular<R, N, V, P>
+{
+    #[inline(always)]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (cos2_m, k) = self.lobe_parts(wi, wo);
+        let p = P::pow(cos2_m, self.half_shininess);
+        crate::real::channels(|c| p * k[c])
     }
 
     #[inline]
@@ -442,8 +450,9 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let d = self.diffuse.eval(wi, wo);
-        let s = self.specular.eval(wi, wo);
-        crate::real::channels(|c| d[c] + s[c])
+        let (cos2_m, k) = self.specular.lobe_parts(wi, wo);
+        let p = P::pow(cos2_m, self.specular.half_shininess);
+        crate::real::channels(|c| p.mul_add(k[c], d[c]))
     }
 
     #[inline]
@@ -458,5 +467,100 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
                        albedo at grazing view (R_s = 1, F0 = 0)",
             },
         }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pipelined batch evaluation
+// ---------------------------------------------------------------------------------------------
+
+/// The passes of [`crate::batch::Pipelined`] for the normalized Blinn-Phong: (1) geometry,
+/// Fresnel and the diffuse term per pair, (2) `P::start` (`y·log₂ x`), (3) `P::finish`
+/// (`exp2`) and `pow·k + d`, block by block — the same bodies as `eval`, so the same bits. For the specular
+/// lobe alone `diffuse` returns 0 (and `p·k + 0 = p·k`, as `p·k ≥ 0`).
+#[inline(always)]
+fn nbp_passes<const N: usize, V: SpecularDenominator, P: PowFn>(
+    specular: &NormalizedBlinnPhongSpecular<f32, N, V, P>,
+    diffuse: impl Fn(Vec3<f32>, Vec3<f32>) -> [f32; N],
+    wi: crate::batch::Directions<'_>,
+    wo: crate::batch::Directions<'_>,
+    mut out: [&mut [f32]; N],
+) {
+    use crate::batch::BLOCK;
+    let mut x = [0.0f32; BLOCK];
+    let mut k = [[0.0f32; BLOCK]; N];
+    let mut d = [[0.0f32; BLOCK]; N];
+    let y = specular.half_shininess;
+    let total = wi.len();
+    let mut start = 0;
+    while start < total {
+        let end = (start + BLOCK).min(total);
+        let n = end - start;
+        let (wi, wo) = (wi.range(start..end), wo.range(start..end));
+        let (ix, iy, iz) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
+        let (ox, oy, oz) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
+        let x = &mut x[..n];
+        // Pass 1: geometry, Fresnel, diffuse.
+        for i in 0..n {
+            let (wi, wo) = (
+                Vec3::new(ix[i], iy[i], iz[i]),
+                Vec3::new(ox[i], oy[i], oz[i]),
+            );
+            let (cos2_m, kk) = specular.lobe_parts(wi, wo);
+            let dd = diffuse(wi, wo);
+            x[i] = cos2_m;
+            for c in 0..N {
+                k[c][i] = kk[c];
+                d[c][i] = dd[c];
+            }
+        }
+        // Pass 2: the first half of pow (y·log₂ x).
+        for v in x.iter_mut() {
+            *v = P::start(*v, y);
+        }
+        // Pass 3: the second half (exp2) and the sum.
+        let block = out.each_mut().map(|o| &mut o[start..end]);
+        for i in 0..n {
+            let p = P::finish(x[i], y);
+            for c in 0..N {
+                // `Real::mul_add`, as in `eval` (the inherent `f32::mul_add` always fuses).
+                block[c][i] = Real::mul_add(p, k[c][i], d[c][i]);
+            }
+        }
+        start = end;
+    }
+}
+
+impl<const N: usize, V: SpecularDenominator, P: PowFn> crate::batch::Pipelined<N>
+    for NormalizedBlinnPhong<f32, N, V, P>
+{
+    #[inline(always)]
+    fn eval_passes(
+        &self,
+        wi: crate::batch::Directions<'_>,
+        wo: crate::batch::Directions<'_>,
+        out: [&mut [f32]; N],
+    ) {
+        nbp_passes(
+            &self.specular,
+            |wi, wo| self.diffuse.eval(wi, wo),
+            wi,
+            wo,
+            out,
+        );
+    }
+}
+
+impl<const N: usize, V: SpecularDenominator, P: PowFn> crate::batch::Pipelined<N>
+    for NormalizedBlinnPhongSpecular<f32, N, V, P>
+{
+    #[inline(always)]
+    fn eval_passes(
+        &self,
+        wi: crate::batch::Directions<'_>,
+        wo: crate::batch::Directions<'_>,
+        out: [&mut [f32]; N],
+    ) {
+        nbp_passes(self, |_, _| [0.0; N], wi, wo, out);
     }
 }

@@ -3,7 +3,7 @@
 
 use core::marker::PhantomData;
 
-use super::{Brdf, Energy, Properties, Reciprocity, half_and_cos_d, masked, upper};
+use super::{Brdf, Energy, Properties, Reciprocity, half_and_cos_d, upper};
 use crate::fresnel::FresnelTerm;
 use crate::masking::Masking;
 use crate::ndf::Ndf;
@@ -63,17 +63,13 @@ impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>> CookTorrance<R, D, F, G> {
     }
 }
 
-impl<R, D, F, G, const N: usize> Brdf<R, N> for CookTorrance<R, D, F, G>
-where
-    R: Real,
-    D: Ndf<R>,
-    F: FresnelTerm<R, N>,
-    G: Masking<R, D>,
-{
+impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>> CookTorrance<R, D, F, G> {
+    /// `(cos θd, D·V)` with `D·V = 0` below the horizon: everything but the Fresnel term.
+    /// Shared by `eval` and the pipelined batch passes (one body).
     #[inline(always)]
-    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+    fn geometry(&self, wi: Vec3<R>, wo: Vec3<R>) -> (R, R) {
         // Lanes with a direction below the horizon compute garbage (possibly NaN) that the
-        // final select replaces by 0: every operation is lane-wise, so nothing leaks.
+        // select replaces by 0: every operation is lane-wise, so nothing leaks.
         let m = upper(wi, wo);
         // cos θd = wi·wm = wo·wm, computed symmetrically as |wi + wo|/2.
         let (wm, cos_d) = half_and_cos_d(wi, wo);
@@ -83,8 +79,67 @@ where
         let (dn, dd) = self.ndf.d_fraction(wm, h, h.length_squared());
         let (vn, vd) = self.masking.visibility_fraction(&self.ndf, wi, wo, wm, h);
         let dv = (dn * vn) / (dd * vd).max(R::from_f64(1e-30));
+        (cos_d, R::select(m, dv, R::zero()))
+    }
+}
+
+impl<const N: usize, D, F, G> crate::batch::Pipelined<N> for CookTorrance<f32, D, F, G>
+where
+    D: Ndf<f32>,
+    F: FresnelTerm<f32, N>,
+    G: Masking<f32, D>,
+{
+    /// Two passes per block: the microfacet geometry (`cos θd`, `D·V`: the half vector's
+    /// square root, the masking roots, one division), then the Fresnel term and the product.
+    #[inline(always)]
+    fn eval_passes(
+        &self,
+        wi: crate::batch::Directions<'_>,
+        wo: crate::batch::Directions<'_>,
+        mut out: [&mut [f32]; N],
+    ) {
+        use crate::batch::BLOCK;
+        let mut cos_d = [0.0f32; BLOCK];
+        let mut dv = [0.0f32; BLOCK];
+        let total = wi.len();
+        let mut start = 0;
+        while start < total {
+            let end = (start + BLOCK).min(total);
+            let n = end - start;
+            let (wi, wo) = (wi.range(start..end), wo.range(start..end));
+            let (ix, iy, iz) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
+            let (ox, oy, oz) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
+            let (cos_d, dv) = (&mut cos_d[..n], &mut dv[..n]);
+            for i in 0..n {
+                (cos_d[i], dv[i]) = self.geometry(
+                    Vec3::new(ix[i], iy[i], iz[i]),
+                    Vec3::new(ox[i], oy[i], oz[i]),
+                );
+            }
+            let block = out.each_mut().map(|o| &mut o[start..end]);
+            for i in 0..n {
+                let f = self.fresnel.eval(cos_d[i]);
+                for c in 0..N {
+                    block[c][i] = f[c] * dv[i];
+                }
+            }
+            start = end;
+        }
+    }
+}
+
+impl<R, D, F, G, const N: usize> Brdf<R, N> for CookTorrance<R, D, F, G>
+where
+    R: Real,
+    D: Ndf<R>,
+    F: FresnelTerm<R, N>,
+    G: Masking<R, D>,
+{
+    #[inline(always)]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let (cos_d, dv) = self.geometry(wi, wo);
         let f = self.fresnel.eval(cos_d);
-        masked(m, crate::real::channels(|c| f[c] * dv))
+        crate::real::channels(|c| f[c] * dv)
     }
 
     #[inline]
