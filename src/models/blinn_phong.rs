@@ -207,7 +207,13 @@ impl SpecularDenominator for MaxCos {
 ///
 /// `P` chooses how `(wm.z)^s` is computed: [`ExactPow`] (default, the library `powf`) or
 /// [`crate::fast::FastPow`] (polynomial, relative error ≤ 1e-5 on the lobe's domain, and it
-/// vectorizes in the [`crate::batch`] kernels).
+/// vectorizes in the [`crate::batch`] kernels). The lobe is evaluated as
+/// `(cos²θm)^(s/2)`, `cos²θm = h.z²/|h|²` with `h = wi + wo`: no square root before the
+/// `pow`, and one division for both `1/|h|²` and `1/V`.
+///
+/// For batches, [`crate::batch::eval_pipelined`] evaluates it in passes (geometry and
+/// Fresnel, `y·log₂ x`, `exp2`), bit-identical to `eval` and faster on long-chain cores
+/// ([`crate::batch::Pipelined`]).
 ///
 /// Domain: `R_s, F0 ∈ [0, 1]`, `s ∈ [0, ∞)`.
 ///
@@ -398,6 +404,9 @@ impl<R: Real, const N: usize> Brdf<R, N> for CoupledLambert<R, N> {
 /// only). The diffuse coupling uses `F(F0, N·L)` as a stand-in for the specular's true
 /// albedo, so the sum can exceed albedo 1 (proved in the tests, e.g. `R_d = R_s = 1`,
 /// `F0 = 0`, grazing `wo`).
+///
+/// For batches use [`crate::batch::eval_pipelined`] with [`crate::fast::FastPow`] (see
+/// [`crate::batch::Pipelined`]).
 ///
 /// Reference: Y. Gotanda, "Basic of Reflectance", tri-Ace, Imagine Day 2009.
 ///

@@ -21,6 +21,9 @@ use crate::{Real, Vec3};
 /// approximate visibility monomorphizes exactly that and pays for nothing else. The body
 /// calls `G::visibility`, which approximate terms override with their cheaper direct forms.
 ///
+/// [`crate::batch::Pipelined`] is implemented for `f32`: the geometry (`cos θd`, `D·V`) and the
+/// Fresnel term run as separate passes over a block, bit-identical to `eval`.
+///
 /// Below the horizon the result is replaced by 0 with a final select; the parts still run
 /// on those lanes (branch-free) and may compute garbage there, which never reaches a
 /// result because every operation is lane-wise.
