@@ -10,7 +10,7 @@ mod common;
 use brdf::fresnel::{Conductor, Dielectric, Schlick};
 use brdf::masking::{Implicit, SmithHeightCorrelated, SmithSeparable, VCavity};
 use brdf::models::*;
-use brdf::ndf::{Beckmann, Ggx};
+use brdf::ndf::{Beckmann, Ggx, GgxIsotropic};
 use brdf::{Scalar, Vec3};
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -413,6 +413,14 @@ fn zoo<S: Scalar>(p: &P) -> Zoo<S> {
             Ggx::anisotropic(s(a.0), s(a.1)).unwrap(),
             Schlick::new([s(u[2])]).unwrap(),
             SmithHeightCorrelated,
+        )),
+    ));
+    z.push((
+        "ct_ggx_isotropic_conductor_sep",
+        Box::new(CookTorrance::new(
+            GgxIsotropic::new(s(a.0)).unwrap(),
+            Conductor::new([s(0.2 + 3.0 * u[6])], [s(10.0 * u[7])]).unwrap(),
+            SmithSeparable,
         )),
     ));
     z.push((
@@ -892,6 +900,13 @@ fn cook_torrance_conserves_energy_with_proper_masking() {
         );
         let (mx, th) = max_albedo(&ch0(&ggx));
         assert!(mx <= 1.0 + SLACK, "ggx hc α={a}: {mx} at {th}");
+        let iso = CookTorrance::new(
+            GgxIsotropic::<f64>::new(a).unwrap(),
+            Schlick::new([1.0]).unwrap(),
+            SmithHeightCorrelated,
+        );
+        let (mx, th) = max_albedo(&ch0(&iso));
+        assert!(mx <= 1.0 + SLACK, "isotropic ggx hc α={a}: {mx} at {th}");
         let beck = CookTorrance::new(
             Beckmann::<f64>::new(a).unwrap(),
             Schlick::new([1.0]).unwrap(),
