@@ -98,26 +98,17 @@ pub trait Masking<R: Real, D: Ndf<R>> {
         self.g2(ndf, wi, wo, wm) / (R::from_f64(4.0) * wi.z * wo.z).max(R::from_f64(1e-30))
     }
 
-    /// The visibility as a fraction `(numerator, denominator)`, given also the unnormalized
-    /// half vector `h = wi + wo` (same direction as `wm`), so that a Cook-Torrance body
+    /// The visibility as a fraction `(numerator, denominator)`, so that a Cook-Torrance body
     /// divides once for `D·V` (see [`crate::ndf::Ndf::d_fraction`]). The default is
-    /// `(visibility(..), 1)`; the Smith terms override it with `(1, 4·den)` and never need `wm`
-    /// normalized.
+    /// `(visibility(..), 1)`; the Smith terms override it with `(1, 4·den)` and never read
+    /// `wm` (so a body that passes them an unnormalized half vector loses nothing).
     ///
-    /// Domain: unit `wi`, `wo` with `wi.z > 0`, `wo.z > 0` and `wm ∥ h = wi + wo` — the
+    /// Domain: unit `wi`, `wo` with `wi.z > 0`, `wo.z > 0` and `wm ∥ wi + wo` — the
     /// reflection configuration. There `wi·wm = wo·wm = |wi + wo|/2 > 0` (the directions
     /// cannot be opposite), so the microfacet visibility `χ⁺(wi·wm) χ⁺(wo·wm)` is 1 and the
     /// Smith terms omit it; [`Masking::g2`] and [`Masking::visibility`] keep it for any `wm`.
     #[inline(always)]
-    fn visibility_fraction(
-        &self,
-        ndf: &D,
-        wi: Vec3<R>,
-        wo: Vec3<R>,
-        wm: Vec3<R>,
-        h: Vec3<R>,
-    ) -> (R, R) {
-        let _ = h;
+    fn visibility_fraction(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> (R, R) {
         (self.visibility(ndf, wi, wo, wm), R::one())
     }
 }
@@ -176,21 +167,12 @@ impl<R: Real, D: SmithLambda<R>> Masking<R, D> for SmithHeightCorrelated {
 
     #[inline(always)]
     fn visibility(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
-        let den = ndf.height_correlated_den(wi, wo);
-        let v = (R::from_f64(4.0) * den).max(tiny()).recip();
-        R::select(front(wi, wo, wm), v, R::zero())
+        let (_, den) = self.visibility_fraction(ndf, wi, wo, wm);
+        R::select(front(wi, wo, wm), den.recip(), R::zero())
     }
 
     #[inline(always)]
-    fn visibility_fraction(
-        &self,
-        ndf: &D,
-        wi: Vec3<R>,
-        wo: Vec3<R>,
-        _wm: Vec3<R>,
-        h: Vec3<R>,
-    ) -> (R, R) {
-        let _ = h;
+    fn visibility_fraction(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, _wm: Vec3<R>) -> (R, R) {
         let den = (R::from_f64(4.0) * ndf.height_correlated_den(wi, wo)).max(tiny());
         (R::one(), den)
     }
@@ -231,21 +213,12 @@ impl<R: Real, D: SmithLambda<R>> Masking<R, D> for SmithSeparable {
 
     #[inline(always)]
     fn visibility(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
-        let (gi, go) = (ndf.separable_den(wi), ndf.separable_den(wo));
-        let v = (R::from_f64(4.0) * gi * go).max(tiny()).recip();
-        R::select(front(wi, wo, wm), v, R::zero())
+        let (_, den) = self.visibility_fraction(ndf, wi, wo, wm);
+        R::select(front(wi, wo, wm), den.recip(), R::zero())
     }
 
     #[inline(always)]
-    fn visibility_fraction(
-        &self,
-        ndf: &D,
-        wi: Vec3<R>,
-        wo: Vec3<R>,
-        _wm: Vec3<R>,
-        h: Vec3<R>,
-    ) -> (R, R) {
-        let _ = h;
+    fn visibility_fraction(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, _wm: Vec3<R>) -> (R, R) {
         let (gi, go) = (ndf.separable_den(wi), ndf.separable_den(wo));
         (R::one(), (R::from_f64(4.0) * gi * go).max(tiny()))
     }

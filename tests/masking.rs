@@ -759,15 +759,15 @@ fn fraction_forms_equal_the_direct_forms() {
             for v in [
                 rel(
                     SmithHeightCorrelated.visibility(&ggx, wi, wo, wm),
-                    SmithHeightCorrelated.visibility_fraction(&ggx, wi, wo, wm, h),
+                    SmithHeightCorrelated.visibility_fraction(&ggx, wi, wo, wm),
                 ),
                 rel(
                     SmithSeparable.visibility(&ggx, wi, wo, wm),
-                    SmithSeparable.visibility_fraction(&ggx, wi, wo, wm, h),
+                    SmithSeparable.visibility_fraction(&ggx, wi, wo, wm),
                 ),
                 rel(
                     VCavity.visibility(&beck, wi, wo, wm),
-                    VCavity.visibility_fraction(&beck, wi, wo, wm, h),
+                    VCavity.visibility_fraction(&beck, wi, wo, wm),
                 ),
             ] {
                 worst = worst.max(v);

@@ -80,7 +80,7 @@ impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>> CookTorrance<R, D, F, G> {
         // use `wm`, and then its normalization is not computed at all.
         let h = wi + wo;
         let (dn, dd) = self.ndf.d_fraction(wm, h, h.length_squared());
-        let (vn, vd) = self.masking.visibility_fraction(&self.ndf, wi, wo, wm, h);
+        let (vn, vd) = self.masking.visibility_fraction(&self.ndf, wi, wo, wm);
         let dv = (dn * vn) / (dd * vd).max(R::from_f64(1e-30));
         (cos_d, R::select(m, dv, R::zero()))
     }
