@@ -493,51 +493,52 @@ fn nbp_passes<const N: usize, V: SpecularDenominator, P: PowFn>(
     diffuse: impl Fn(Vec3<f32>, Vec3<f32>) -> [f32; N],
     wi: crate::batch::Directions<'_>,
     wo: crate::batch::Directions<'_>,
-    mut out: [&mut [f32]; N],
+    out: [&mut [f32]; N],
 ) {
     use crate::batch::BLOCK;
     let mut x = [0.0f32; BLOCK];
     let mut k = [[0.0f32; BLOCK]; N];
     let mut d = [[0.0f32; BLOCK]; N];
     let y = specular.half_shininess;
-    let total = wi.len();
-    let mut start = 0;
-    while start < total {
-        let end = (start + BLOCK).min(total);
-        let n = end - start;
-        let (wi, wo) = (wi.range(start..end), wo.range(start..end));
-        let (ix, iy, iz) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
-        let (ox, oy, oz) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
-        let x = &mut x[..n];
-        // Pass 1: geometry, Fresnel, diffuse.
-        for i in 0..n {
-            let (wi, wo) = (
-                Vec3::new(ix[i], iy[i], iz[i]),
-                Vec3::new(ox[i], oy[i], oz[i]),
-            );
-            let (cos2_m, kk) = specular.lobe_parts(wi, wo);
-            let dd = diffuse(wi, wo);
-            x[i] = cos2_m;
-            for c in 0..N {
-                k[c][i] = kk[c];
-                d[c][i] = dd[c];
+    crate::batch::for_each_block(
+        wi,
+        wo,
+        out,
+        #[inline(always)]
+        |wi, wo, block| {
+            let n = wi.len();
+            let (ix, iy, iz) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
+            let (ox, oy, oz) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
+            let x = &mut x[..n];
+            // Pass 1: geometry, Fresnel, diffuse.
+            for i in 0..n {
+                let (wi, wo) = (
+                    Vec3::new(ix[i], iy[i], iz[i]),
+                    Vec3::new(ox[i], oy[i], oz[i]),
+                );
+                let (cos2_m, kk) = specular.lobe_parts(wi, wo);
+                let dd = diffuse(wi, wo);
+                x[i] = cos2_m;
+                for c in 0..N {
+                    k[c][i] = kk[c];
+                    d[c][i] = dd[c];
+                }
             }
-        }
-        // Pass 2: the first half of pow (y·log₂ x).
-        for v in x.iter_mut() {
-            *v = P::start(*v, y);
-        }
-        // Pass 3: the second half (exp2) and the sum.
-        let block = out.each_mut().map(|o| &mut o[start..end]);
-        for i in 0..n {
-            let p = P::finish(x[i], y);
-            for c in 0..N {
-                // `Real::mul_add`, as in `eval` (the inherent `f32::mul_add` always fuses).
-                block[c][i] = Real::mul_add(p, k[c][i], d[c][i]);
+            // Pass 2: the first half of pow (y·log₂ x).
+            for v in x.iter_mut() {
+                *v = P::start(*v, y);
             }
-        }
-        start = end;
-    }
+            // Pass 3: the second half (exp2) and the sum.
+            let block = block.map(|o| &mut o[..n]);
+            for i in 0..n {
+                let p = P::finish(x[i], y);
+                for c in 0..N {
+                    // `Real::mul_add`, as in `eval` (the inherent `f32::mul_add` always fuses).
+                    block[c][i] = Real::mul_add(p, k[c][i], d[c][i]);
+                }
+            }
+        },
+    );
 }
 
 impl<const N: usize, V: SpecularDenominator, P: PowFn> crate::batch::Pipelined<N>

@@ -99,35 +99,36 @@ where
         &self,
         wi: crate::batch::Directions<'_>,
         wo: crate::batch::Directions<'_>,
-        mut out: [&mut [f32]; N],
+        out: [&mut [f32]; N],
     ) {
         use crate::batch::BLOCK;
         let mut cos_d = [0.0f32; BLOCK];
         let mut dv = [0.0f32; BLOCK];
-        let total = wi.len();
-        let mut start = 0;
-        while start < total {
-            let end = (start + BLOCK).min(total);
-            let n = end - start;
-            let (wi, wo) = (wi.range(start..end), wo.range(start..end));
-            let (ix, iy, iz) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
-            let (ox, oy, oz) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
-            let (cos_d, dv) = (&mut cos_d[..n], &mut dv[..n]);
-            for i in 0..n {
-                (cos_d[i], dv[i]) = self.geometry(
-                    Vec3::new(ix[i], iy[i], iz[i]),
-                    Vec3::new(ox[i], oy[i], oz[i]),
-                );
-            }
-            let block = out.each_mut().map(|o| &mut o[start..end]);
-            for i in 0..n {
-                let f = self.fresnel.eval(cos_d[i]);
-                for c in 0..N {
-                    block[c][i] = f[c] * dv[i];
+        crate::batch::for_each_block(
+            wi,
+            wo,
+            out,
+            #[inline(always)]
+            |wi, wo, block| {
+                let n = wi.len();
+                let (ix, iy, iz) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
+                let (ox, oy, oz) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
+                let (cos_d, dv) = (&mut cos_d[..n], &mut dv[..n]);
+                for i in 0..n {
+                    (cos_d[i], dv[i]) = self.geometry(
+                        Vec3::new(ix[i], iy[i], iz[i]),
+                        Vec3::new(ox[i], oy[i], oz[i]),
+                    );
                 }
-            }
-            start = end;
-        }
+                let block = block.map(|o| &mut o[..n]);
+                for i in 0..n {
+                    let f = self.fresnel.eval(cos_d[i]);
+                    for c in 0..N {
+                        block[c][i] = f[c] * dv[i];
+                    }
+                }
+            },
+        );
     }
 }
 
