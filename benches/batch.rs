@@ -18,6 +18,7 @@ use brdf::fresnel::{Conductor, Schlick};
 use brdf::masking::{SmithHeightCorrelated, SmithSeparable};
 use brdf::models::CookTorrance;
 use brdf::ndf::{Ggx, GgxIsotropic};
+use brdf::real::Splat;
 use brdf::{Brdf, Real, Vec3, f32x4, f32x8, f32x16, ior};
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 
@@ -256,13 +257,20 @@ struct TimesCos<B>(B);
 impl<R: Real, B: Brdf<R, 3>> Brdf<R, 3> for TimesCos<B> {
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; 3] {
-        self.0.eval(wi, wo).map(|f| f * wo.z)
+        let f = self.0.eval(wi, wo);
+        [f[0] * wo.z, f[1] * wo.z, f[2] * wo.z]
     }
     fn properties(&self) -> brdf::models::Properties {
         self.0.properties()
     }
 }
-impl<B: Pipelined<3>> Pipelined<3> for TimesCos<B> {
+impl<B: Splat> Splat for TimesCos<B> {
+    type On<L: Real> = TimesCos<B::On<L>>;
+    fn splat<L: Real>(&self) -> Self::On<L> {
+        TimesCos(self.0.splat())
+    }
+}
+impl<K: Real<Scalar = f32, Mask = bool>, B: Pipelined<K, 3>> Pipelined<K, 3> for TimesCos<B> {
     #[inline(always)]
     fn eval_passes(&self, wi: Directions<'_>, wo: Directions<'_>, mut out: [&mut [f32]; 3]) {
         self.0.eval_passes(wi, wo, out.each_mut().map(|o| &mut **o));

@@ -2,12 +2,23 @@
 //! instruction set the CPU has.
 //!
 //! The formulas of this crate are branch-free generic bodies (see [`crate::real`]). Inside a
-//! function compiled for AVX2+FMA or AVX-512, LLVM vectorizes the `f32` instantiation of such a
-//! body across loop iterations: 8 or 16 direction pairs per instruction, with a scalar tail
+//! function compiled for AVX2+FMA or AVX-512, LLVM vectorizes a one-lane instantiation of such
+//! a body across loop iterations: 8 or 16 direction pairs per instruction, with a scalar tail
 //! for the remainder. This module compiles the batch loop three times — portable (the build's
 //! baseline, SSE2 on the default x86-64 target), AVX2+FMA and AVX-512 — and picks one at run
 //! time with `is_x86_feature_detected!`, so a crate built for the default target still uses
 //! the hardware it runs on.
+//!
+//! The portable loop evaluates the model as it was built, on `f32`. The two FMA loops evaluate
+//! it on [`F32Fma`] ([`BatchBrdf::fused`], through [`Splat`]), whose `mul_add` is one fused
+//! instruction there: on a default-target build `f32`'s `mul_add` cannot fuse (its choice is
+//! fixed when the crate is compiled), and fusing roughly halves the floating-point work of a
+//! BRDF body (measured: 1.5–2.6× faster, see the README). So:
+//!
+//! * [`Isa::Portable`] results equal [`Brdf::eval`] on the `f32` model bit for bit;
+//! * [`Isa::Avx2Fma`] and [`Isa::Avx512`] results equal `eval` on the [`F32Fma`] model
+//!   (`brdf.splat::<F32Fma>()`) bit for bit, and differ from the `f32` model by the rounding of
+//!   the products that `f32` leaves unfused: a few ULP, stated per model in `tests/batch.rs`.
 //!
 //! Bodies that call a library transcendental (`powf`, `exp` from `std`/`libm`) do not
 //! vectorize this way; the models offer polynomial alternatives (see [`crate::fast`]) for
@@ -18,7 +29,10 @@
 //!
 //! Without the `std` feature (or off x86-64) only [`Isa::Portable`] exists.
 
-use crate::{Vec3, models::Brdf};
+use core::marker::PhantomData;
+
+use crate::real::{F32Fma, Splat};
+use crate::{Real, Vec3, models::Brdf};
 
 /// Unit directions in the local frame as structure of arrays: `(x[i], y[i], z[i])` is one
 /// direction.
@@ -139,6 +153,31 @@ impl core::fmt::Display for Unavailable {
 
 impl core::error::Error for Unavailable {}
 
+/// What the batch entry points need of a model: its `f32` form (for the portable loop) and
+/// its [`F32Fma`] form (for the FMA loops).
+///
+/// Implemented for every `B: Brdf<f32, N> + Splat` whose [`F32Fma`] form is a
+/// `Brdf<F32Fma, N>` — every model of this crate, and a model of your own once it is generic
+/// over [`Real`] and implements [`Splat`] (see its example).
+pub trait BatchBrdf<const N: usize>: Brdf<f32, N> {
+    /// The same model on [`F32Fma`].
+    type Fused: Brdf<F32Fma, N>;
+    /// The same model on [`F32Fma`] (its constants keep their bits).
+    fn fused(&self) -> Self::Fused;
+}
+
+impl<B, const N: usize> BatchBrdf<N> for B
+where
+    B: Brdf<f32, N> + Splat,
+    B::On<F32Fma>: Brdf<F32Fma, N>,
+{
+    type Fused = B::On<F32Fma>;
+    #[inline]
+    fn fused(&self) -> Self::Fused {
+        self.splat()
+    }
+}
+
 /// Panics unless `wi`, `wo` and every output slice have the same length; returns it.
 #[inline(always)]
 fn checked_len<const N: usize>(
@@ -160,11 +199,15 @@ trait Loop<const N: usize> {
     fn run(&self, wi: Directions<'_>, wo: Directions<'_>, out: [&mut [f32]; N]);
 }
 
-/// One `f32` evaluation per iteration, vectorized by LLVM across iterations when the
-/// enclosing function enables wider instruction sets.
-struct PerPair<'a, B>(&'a B);
+/// One evaluation on the one-lane type `K` (`f32` or [`F32Fma`]) per iteration, vectorized
+/// by LLVM across iterations when the enclosing function enables wider instruction sets.
+struct PerPair<'a, K, B>(&'a B, PhantomData<K>);
 
-impl<B: Brdf<f32, N>, const N: usize> Loop<N> for PerPair<'_, B> {
+impl<K, B, const N: usize> Loop<N> for PerPair<'_, K, B>
+where
+    K: Real<Scalar = f32, Mask = bool>,
+    B: Brdf<K, N>,
+{
     #[inline(always)]
     fn run(&self, wi: Directions<'_>, wo: Directions<'_>, out: [&mut [f32]; N]) {
         let n = checked_len(&wi, &wo, &out);
@@ -174,20 +217,24 @@ impl<B: Brdf<f32, N>, const N: usize> Loop<N> for PerPair<'_, B> {
         let out = out.map(|c| &mut c[..n]);
         for i in 0..n {
             let f = self.0.eval(
-                Vec3::new(ix[i], iy[i], iz[i]),
-                Vec3::new(ox[i], oy[i], oz[i]),
+                Vec3::new(K::splat(ix[i]), K::splat(iy[i]), K::splat(iz[i])),
+                Vec3::new(K::splat(ox[i]), K::splat(oy[i]), K::splat(oz[i])),
             );
             for c in 0..N {
-                out[c][i] = f[c];
+                out[c][i] = f[c].lane(0);
             }
         }
     }
 }
 
-/// The passes of [`Pipelined::eval_passes`].
-struct Passes<'a, B>(&'a B);
+/// The passes of [`Pipelined::eval_passes`] on the one-lane type `K`.
+struct Passes<'a, K, B>(&'a B, PhantomData<K>);
 
-impl<B: Pipelined<N>, const N: usize> Loop<N> for Passes<'_, B> {
+impl<K, B, const N: usize> Loop<N> for Passes<'_, K, B>
+where
+    K: Real<Scalar = f32, Mask = bool>,
+    B: Pipelined<K, N>,
+{
     #[inline(always)]
     fn run(&self, wi: Directions<'_>, wo: Directions<'_>, out: [&mut [f32]; N]) {
         checked_len(&wi, &wo, &out);
@@ -217,11 +264,13 @@ fn kernel_avx512<L: Loop<N>, const N: usize>(
     l.run(wi, wo, out)
 }
 
-/// Runs `l` compiled for `isa`.
+/// Runs `portable` compiled for the build's baseline, or `fused` compiled for `isa`'s FMA
+/// instruction sets.
 #[inline]
-fn dispatch<L: Loop<N>, const N: usize>(
+fn dispatch<P: Loop<N>, F: Loop<N>, const N: usize>(
     isa: Isa,
-    l: &L,
+    portable: &P,
+    fused: &F,
     wi: Directions<'_>,
     wo: Directions<'_>,
     out: [&mut [f32]; N],
@@ -230,15 +279,18 @@ fn dispatch<L: Loop<N>, const N: usize>(
         return Err(Unavailable(isa));
     }
     match isa {
-        Isa::Portable => l.run(wi, wo, out),
+        Isa::Portable => portable.run(wi, wo, out),
         // SAFETY: `is_available` checked at run time that the CPU has these features.
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
-        Isa::Avx2Fma => unsafe { kernel_avx2(l, wi, wo, out) },
+        Isa::Avx2Fma => unsafe { kernel_avx2(fused, wi, wo, out) },
         // SAFETY: as above.
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
-        Isa::Avx512 => unsafe { kernel_avx512(l, wi, wo, out) },
+        Isa::Avx512 => unsafe { kernel_avx512(fused, wi, wo, out) },
         #[cfg(not(all(feature = "std", target_arch = "x86_64")))]
-        _ => unreachable!("only Portable is available here"),
+        _ => {
+            let _ = fused;
+            unreachable!("only Portable is available here")
+        }
     }
     Ok(())
 }
@@ -246,22 +298,35 @@ fn dispatch<L: Loop<N>, const N: usize>(
 /// Evaluates `brdf` for every pair `(wi[i], wo[i])` with a chosen instruction set, writing
 /// channel `c` of `f(wi[i], wo[i])` (sr⁻¹, without `cos θi`) to `out[c][i]`.
 ///
-/// Returns [`Unavailable`] if the CPU lacks `isa`. The results equal those of
-/// [`Brdf::eval`] on `f32` bit for bit: [`crate::Real::mul_add`] fuses only in builds with
-/// compile-time FMA, and then in both.
+/// Returns [`Unavailable`] if the CPU lacks `isa`. [`Isa::Portable`] results equal
+/// [`Brdf::eval`] on `brdf` bit for bit; the FMA variants equal `eval` on
+/// [`BatchBrdf::fused`] bit for bit (see the [module docs](self)).
 ///
 /// # Panics
 ///
 /// If `wi`, `wo` and the output slices differ in length.
 #[inline]
-pub fn eval_with<B: Brdf<f32, N>, const N: usize>(
+pub fn eval_with<B: BatchBrdf<N>, const N: usize>(
     isa: Isa,
     brdf: &B,
     wi: Directions<'_>,
     wo: Directions<'_>,
     out: [&mut [f32]; N],
 ) -> Result<(), Unavailable> {
-    dispatch(isa, &PerPair(brdf), wi, wo, out)
+    if isa == Isa::Portable {
+        // No F32Fma form needed (nor built) for the baseline loop.
+        let p = PerPair::<f32, B>(brdf, PhantomData);
+        return dispatch(isa, &p, &p, wi, wo, out);
+    }
+    let fused = brdf.fused();
+    dispatch(
+        isa,
+        &PerPair::<f32, B>(brdf, PhantomData),
+        &PerPair::<F32Fma, B::Fused>(&fused, PhantomData),
+        wi,
+        wo,
+        out,
+    )
 }
 
 /// Evaluates `brdf` for every pair `(wi[i], wo[i])` on the widest instruction set this CPU
@@ -271,22 +336,13 @@ pub fn eval_with<B: Brdf<f32, N>, const N: usize>(
 ///
 /// ```
 /// use brdf::batch::{Directions, eval};
-/// use brdf::{Brdf, Vec3, models::{Properties, Reciprocity, Energy}};
+/// use brdf::models::Lambert;
 ///
-/// struct White;
-/// impl Brdf<f32, 1> for White {
-///     fn eval(&self, wi: Vec3<f32>, wo: Vec3<f32>) -> [f32; 1] {
-///         [if wi.z > 0.0 && wo.z > 0.0 { core::f32::consts::FRAC_1_PI } else { 0.0 }]
-///     }
-///     fn properties(&self) -> Properties {
-///         Properties { reciprocity: Reciprocity::Reciprocal, energy: Energy::Conserving }
-///     }
-/// }
-///
+/// let white = Lambert::<f32, 1>::new([1.0]).unwrap();
 /// let z = [1.0f32; 100];
 /// let zero = [0.0f32; 100];
 /// let mut f = [0.0f32; 100];
-/// eval(&White, Directions::new(&zero, &zero, &z), Directions::new(&zero, &zero, &z), [&mut f]);
+/// eval(&white, Directions::new(&zero, &zero, &z), Directions::new(&zero, &zero, &z), [&mut f]);
 /// assert!(f.iter().all(|&v| v == core::f32::consts::FRAC_1_PI));
 /// ```
 ///
@@ -294,7 +350,7 @@ pub fn eval_with<B: Brdf<f32, N>, const N: usize>(
 ///
 /// If `wi`, `wo` and the output slices differ in length.
 #[inline]
-pub fn eval<B: Brdf<f32, N>, const N: usize>(
+pub fn eval<B: BatchBrdf<N>, const N: usize>(
     brdf: &B,
     wi: Directions<'_>,
     wo: Directions<'_>,
@@ -308,25 +364,26 @@ pub fn eval<B: Brdf<f32, N>, const N: usize>(
 /// normalized Blinn-Phong; its scratch arrays, `(1 + 2N)·4` KiB, stay in L1/L2).
 pub const BLOCK: usize = 1024;
 
-/// A model with a software-pipelined batch evaluation.
+/// A model with a software-pipelined batch evaluation on the one-lane type `K` (`f32` or
+/// [`F32Fma`]).
 ///
 /// A BRDF body is one long dependency chain (a square root, a division, then a polynomial
 /// `pow`), and a vector iteration of the [`eval`] loop carries all of it: the out-of-order
-/// window holds only about one iteration, so the core waits on latency instead of filling its
+/// window holds only a few iterations, so the core waits on latency instead of filling its
 /// pipes. [`Pipelined::eval_passes`] splits the body into passes over blocks of [`BLOCK`]
 /// pairs — each pass a short chain that vectorizes on its own, with the intermediates in
 /// scratch arrays on the stack — using the same formula bodies as [`Brdf::eval`], so its
 /// results equal `eval`'s bit for bit (tested). [`eval_pipelined`] runs it with run-time
-/// dispatch, like [`eval`].
+/// dispatch, like [`eval`], on `f32` in the portable loop and on [`F32Fma`] in the FMA loops.
 ///
 /// Implemented by [`crate::models::NormalizedBlinnPhong`] and
 /// [`crate::models::NormalizedBlinnPhongSpecular`] (passes: geometry, Fresnel and diffuse;
-/// `y·log₂ x`; `exp2` and the sum; +17–40 % on AVX-512), the seed's model, whose chain the
-/// `pow` dominates; and by [`crate::models::CookTorrance`] (passes: `cos θd` and `D·V`; the
-/// Fresnel term and the product; −20 % to +10 % depending on the model and the run, so
-/// measure). Scratch space on the stack: `(1 + 2N)·4` KiB for the normalized Blinn-Phong,
-/// 8 KiB for Cook-Torrance.
-pub trait Pipelined<const N: usize>: Brdf<f32, N> {
+/// `y·log₂ x`; `exp2` and the sum), the seed's model, whose chain the `pow` dominates; and by
+/// [`crate::models::CookTorrance`] (passes: `cos θd` and `D·V`; the Fresnel term and the
+/// product). Whether it pays depends on the model: see the measured ratios in the README.
+/// Scratch space on the stack: `(1 + 2N)·4` KiB for the normalized Blinn-Phong, 8 KiB for
+/// Cook-Torrance.
+pub trait Pipelined<K: Real<Scalar = f32, Mask = bool>, const N: usize>: Brdf<K, N> {
     /// Writes `f(wi[i], wo[i])` to `out[c][i]`, in passes over blocks of [`BLOCK`] pairs
     /// ([`for_each_block`]). The slices have equal lengths (the caller checks).
     fn eval_passes(&self, wi: Directions<'_>, wo: Directions<'_>, out: [&mut [f32]; N]);
@@ -367,14 +424,30 @@ pub fn for_each_block<const N: usize>(
 ///
 /// If `wi`, `wo` and the output slices differ in length.
 #[inline]
-pub fn eval_pipelined_with<B: Pipelined<N>, const N: usize>(
+pub fn eval_pipelined_with<B, const N: usize>(
     isa: Isa,
     brdf: &B,
     wi: Directions<'_>,
     wo: Directions<'_>,
     out: [&mut [f32]; N],
-) -> Result<(), Unavailable> {
-    dispatch(isa, &Passes(brdf), wi, wo, out)
+) -> Result<(), Unavailable>
+where
+    B: BatchBrdf<N> + Pipelined<f32, N>,
+    B::Fused: Pipelined<F32Fma, N>,
+{
+    if isa == Isa::Portable {
+        let p = Passes::<f32, B>(brdf, PhantomData);
+        return dispatch(isa, &p, &p, wi, wo, out);
+    }
+    let fused = brdf.fused();
+    dispatch(
+        isa,
+        &Passes::<f32, B>(brdf, PhantomData),
+        &Passes::<F32Fma, B::Fused>(&fused, PhantomData),
+        wi,
+        wo,
+        out,
+    )
 }
 
 /// [`eval`] for a [`Pipelined`] model, on the widest instruction set this CPU has.
@@ -405,12 +478,15 @@ pub fn eval_pipelined_with<B: Pipelined<N>, const N: usize>(
 ///
 /// If `wi`, `wo` and the output slices differ in length.
 #[inline]
-pub fn eval_pipelined<B: Pipelined<N>, const N: usize>(
+pub fn eval_pipelined<B, const N: usize>(
     brdf: &B,
     wi: Directions<'_>,
     wo: Directions<'_>,
     out: [&mut [f32]; N],
-) {
+) where
+    B: BatchBrdf<N> + Pipelined<f32, N>,
+    B::Fused: Pipelined<F32Fma, N>,
+{
     // The detected variant is available by construction.
     let _ = eval_pipelined_with(Isa::detect(), brdf, wi, wo, out);
 }
@@ -422,7 +498,7 @@ pub fn eval_pipelined<B: Pipelined<N>, const N: usize>(
 /// # Panics
 ///
 /// If `wi`, `wo` and `out` differ in length.
-pub fn eval_glam<B: Brdf<f32, N>, const N: usize>(
+pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
     brdf: &B,
     wi: &[glam::Vec3],
     wo: &[glam::Vec3],
@@ -434,6 +510,8 @@ pub fn eval_glam<B: Brdf<f32, N>, const N: usize>(
         "eval_glam: lengths differ"
     );
     let isa = Isa::detect();
+    // The F32Fma form once per call, not per chunk (only the FMA loops use it).
+    let fused = (isa != Isa::Portable).then(|| brdf.fused());
     let mut soa = [[0.0f32; CHUNK]; 6];
     let mut res = [[0.0f32; CHUNK]; N];
     for ((wi, wo), out) in wi
@@ -454,7 +532,15 @@ pub fn eval_glam<B: Brdf<f32, N>, const N: usize>(
         let dirs_i = Directions::new(&ix[..n], &iy[..n], &iz[..n]);
         let dirs_o = Directions::new(&ox[..n], &oy[..n], &oz[..n]);
         let slices = res.each_mut().map(|c| &mut c[..n]);
-        let _ = eval_with(isa, brdf, dirs_i, dirs_o, slices);
+        let portable = PerPair::<f32, B>(brdf, PhantomData);
+        // The detected variant is available by construction.
+        let _ = match &fused {
+            None => dispatch(isa, &portable, &portable, dirs_i, dirs_o, slices),
+            Some(f) => {
+                let f = PerPair::<F32Fma, B::Fused>(f, PhantomData);
+                dispatch(isa, &portable, &f, dirs_i, dirs_o, slices)
+            }
+        };
         for (i, o) in out.iter_mut().enumerate() {
             *o = core::array::from_fn(|c| res[c][i]);
         }

@@ -75,6 +75,7 @@
 use num_complex::Complex;
 
 use crate::error::{self, Error};
+use crate::real::{Splat, splat_array, splat_scalar};
 use crate::{Real, Scalar};
 
 /// A Fresnel term as a BRDF model uses it: reflectance per colour channel as a function of
@@ -843,6 +844,17 @@ impl<R: Real, const N: usize> Schlick<R, N> {
     }
 }
 
+impl<S: Scalar, const N: usize> Splat for Schlick<S, N> {
+    type On<L: Real> = Schlick<L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Schlick<L, N> {
+        Schlick {
+            f0: splat_array(&self.f0),
+            f90: splat_array(&self.f90),
+        }
+    }
+}
+
 impl<R: Real, const N: usize> FresnelTerm<R, N> for Schlick<R, N> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
@@ -888,6 +900,16 @@ impl<R: Real> Dielectric<R> {
     /// The relative IOR.
     pub fn eta(&self) -> R {
         self.eta
+    }
+}
+
+impl<S: Scalar> Splat for Dielectric<S> {
+    type On<L: Real> = Dielectric<L>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Dielectric<L> {
+        Dielectric {
+            eta: splat_scalar(self.eta),
+        }
     }
 }
 
@@ -992,6 +1014,19 @@ impl<R: Real> Conductor<R, 3> {
     }
 }
 
+impl<S: Scalar, const N: usize> Splat for Conductor<S, N> {
+    type On<L: Real> = Conductor<L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Conductor<L, N> {
+        Conductor {
+            eta: splat_array(&self.eta),
+            k: splat_array(&self.k),
+            e: splat_array(&self.e),
+            nk2: splat_array(&self.nk2),
+        }
+    }
+}
+
 impl<R: Real, const N: usize> FresnelTerm<R, N> for Conductor<R, N> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
@@ -1076,6 +1111,17 @@ impl<R: Real> F82Tint<R, 3> {
     }
 }
 
+impl<S: Scalar, const N: usize> Splat for F82Tint<S, N> {
+    type On<L: Real> = F82Tint<L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> F82Tint<L, N> {
+        F82Tint {
+            f0: splat_array(&self.f0),
+            b: splat_array(&self.b),
+        }
+    }
+}
+
 impl<R: Real, const N: usize> FresnelTerm<R, N> for F82Tint<R, N> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
@@ -1092,6 +1138,8 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for F82Tint<R, N> {
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct NoFresnel;
+
+crate::real::splat_as_itself!(NoFresnel);
 
 impl<R: Real, const N: usize> FresnelTerm<R, N> for NoFresnel {
     #[inline(always)]

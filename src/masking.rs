@@ -81,6 +81,17 @@
 use crate::ndf::{Beckmann, Ndf, ProjectedAlpha, SmithLambda, tiny};
 use crate::{Real, Vec3};
 
+crate::real::splat_as_itself!(
+    SmithHeightCorrelated,
+    SmithSeparable,
+    SmithSeparableWalter,
+    VCavity,
+    SchlickGgx,
+    HammonApprox,
+    Kelemen,
+    Implicit,
+);
+
 /// A masking-shadowing term `G2(wi, wo, wm)` usable with the NDF `D`.
 ///
 /// Implementations that need the NDF (the Smith family) read it through `ndf`; others

@@ -65,7 +65,21 @@
 //!   JCGT 3(2), 2014.
 
 use crate::error::{self, Error};
+use crate::real::{Splat, splat_scalar};
 use crate::{Real, Scalar, Vec3};
+
+/// Implements [`Splat`] for an NDF whose fields are all numbers.
+macro_rules! splat_ndf {
+    ($t:ident { $($f:ident),* $(,)? }) => {
+        impl<S: Scalar> Splat for $t<S> {
+            type On<L: Real> = $t<L>;
+            #[inline]
+            fn splat<L: Real>(&self) -> $t<L> {
+                $t { $($f: splat_scalar(self.$f)),* }
+            }
+        }
+    };
+}
 
 /// A microfacet normal distribution function.
 ///
@@ -455,6 +469,39 @@ macro_rules! ggx_formulas {
 
 ggx_formulas!(Ggx);
 ggx_formulas!(GgxIsotropic);
+
+splat_ndf!(Ggx {
+    alpha_x,
+    alpha_y,
+    alpha_x2,
+    alpha_y2,
+    inv_alpha_x2,
+    inv_alpha_y2,
+    norm
+});
+splat_ndf!(GgxIsotropic {
+    alpha,
+    alpha2,
+    one_minus_alpha2,
+    inv_alpha2,
+    norm
+});
+splat_ndf!(Beckmann {
+    alpha_x,
+    alpha_y,
+    alpha_x2,
+    alpha_y2,
+    inv_alpha_x2,
+    inv_alpha_y2,
+    norm
+});
+splat_ndf!(BlinnPhong { shininess, norm });
+splat_ndf!(AshikhminShirley {
+    nu,
+    nv,
+    norm,
+    pdf_norm
+});
 
 /// The isotropic GGX distribution: [`Ggx`] with `αx = αy = α`, specialized.
 ///

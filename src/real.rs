@@ -605,6 +605,261 @@ impl_lanes!(
     }
 );
 
+// ---------------------------------------------------------------------------------------------
+// F32Fma: f32 with a multiply-add that always fuses
+// ---------------------------------------------------------------------------------------------
+
+/// An `f32` whose [`Real::mul_add`] always fuses (one rounding), whatever the build's target
+/// features: the number type of the batch kernels compiled for AVX2+FMA and AVX-512
+/// ([`crate::batch`]).
+///
+/// Every other operation is the `f32` one, bit for bit (`F32Fma` is `#[repr(transparent)]`
+/// and its [`Real::Scalar`] is `f32`). What differs is `mul_add`: on `f32` it fuses only when
+/// the crate is compiled with `target_feature = "fma"` (otherwise `a·b + c`, two roundings,
+/// because a software `fma` would be ~20× slower), while on `F32Fma` it is always the
+/// correctly rounded `fma(a, b, c)`. Inside a function compiled with FMA enabled — the
+/// run-time dispatched batch kernels — that is one `vfmadd` instruction, and LLVM vectorizes
+/// it with the rest of the body; elsewhere it is a call to the math library's `fmaf`:
+/// correct, but slow, so do not use `F32Fma` for scalar work outside such kernels.
+///
+/// A model built on `f32` becomes a model on `F32Fma` with [`Splat::splat`] (exact: the
+/// constants keep their bits). Since a correctly rounded `fma` is the same number in
+/// software and in hardware, `eval` on the `F32Fma` model equals the FMA batch kernels bit
+/// for bit on any machine (the batch tests rely on it), and differs from `eval` on `f32` by
+/// the rounding of the unfused products only.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::Real;
+/// use brdf::real::F32Fma;
+/// // 1 + 2⁻²³ squared is 1 + 2⁻²² + 2⁻⁴⁶: fused, the 2⁻⁴⁶ survives the subtraction.
+/// let x = 1.0 + f32::EPSILON;
+/// let fused = F32Fma(x).mul_add(F32Fma(x), F32Fma(-(1.0 + 2.0 * f32::EPSILON)));
+/// assert_eq!(fused.0, 2.0f32.powi(-46));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, PartialOrd)]
+#[repr(transparent)]
+pub struct F32Fma(pub f32);
+
+macro_rules! f32fma_ops {
+    ($($tr:ident $m:ident $atr:ident $am:ident $op:tt),*) => {
+        $(
+            impl $tr for F32Fma {
+                type Output = F32Fma;
+                #[inline(always)]
+                fn $m(self, o: F32Fma) -> F32Fma {
+                    F32Fma(self.0 $op o.0)
+                }
+            }
+            impl $atr for F32Fma {
+                #[inline(always)]
+                fn $am(&mut self, o: F32Fma) {
+                    self.0 = self.0 $op o.0;
+                }
+            }
+        )*
+    };
+}
+f32fma_ops!(
+    Add add AddAssign add_assign +,
+    Sub sub SubAssign sub_assign -,
+    Mul mul MulAssign mul_assign *,
+    Div div DivAssign div_assign /
+);
+
+impl Neg for F32Fma {
+    type Output = F32Fma;
+    #[inline(always)]
+    fn neg(self) -> F32Fma {
+        F32Fma(-self.0)
+    }
+}
+
+/// Forwards a `Real` method of `F32Fma` to the `f32` one.
+macro_rules! via_f32 {
+    ($($m:ident),*) => {
+        $(
+            #[inline(always)]
+            fn $m(self) -> Self {
+                F32Fma(<f32 as Real>::$m(self.0))
+            }
+        )*
+    };
+}
+
+/// Forwards a comparison of `F32Fma` to the `f32` one.
+macro_rules! cmp_via_f32 {
+    ($($m:ident),*) => {
+        $(
+            #[inline(always)]
+            fn $m(self, other: Self) -> bool {
+                <f32 as Real>::$m(self.0, other.0)
+            }
+        )*
+    };
+}
+
+impl Real for F32Fma {
+    type Scalar = f32;
+    type Mask = bool;
+    const LANES: usize = 1;
+
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        F32Fma(x)
+    }
+    #[inline(always)]
+    fn from_f64(x: f64) -> Self {
+        F32Fma(x as f32)
+    }
+    #[inline(always)]
+    fn lane(self, i: usize) -> f32 {
+        assert!(i == 0, "lane index out of range");
+        self.0
+    }
+    #[inline(always)]
+    fn from_fn(mut f: impl FnMut(usize) -> f32) -> Self {
+        F32Fma(f(0))
+    }
+    via_f32!(
+        sqrt,
+        abs,
+        exp,
+        exp2,
+        ln,
+        log2,
+        sin,
+        cos,
+        floor,
+        rsqrt_estimate
+    );
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        F32Fma(<f32 as Real>::min(self.0, other.0))
+    }
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        F32Fma(<f32 as Real>::max(self.0, other.0))
+    }
+    /// `fma(self, a, b)`, one rounding, on every build (see the [type docs](F32Fma)).
+    #[inline(always)]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        F32Fma(f32m::fma(self.0, a.0, b.0))
+    }
+    #[inline(always)]
+    fn pow(self, y: Self) -> Self {
+        F32Fma(<f32 as Real>::pow(self.0, y.0))
+    }
+    #[inline(always)]
+    fn exponent_split(self) -> (Self, Self) {
+        let (m, e) = <f32 as Real>::exponent_split(self.0);
+        (F32Fma(m), F32Fma(e))
+    }
+    #[inline(always)]
+    fn ldexp(self, e: Self) -> Self {
+        F32Fma(<f32 as Real>::ldexp(self.0, e.0))
+    }
+    cmp_via_f32!(lt, le, gt, ge, eq);
+    #[inline(always)]
+    fn is_finite(self) -> bool {
+        self.0.is_finite()
+    }
+    #[inline(always)]
+    fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
+        if mask { if_true } else { if_false }
+    }
+    #[inline(always)]
+    fn any(mask: bool) -> bool {
+        mask
+    }
+    #[inline(always)]
+    fn all(mask: bool) -> bool {
+        mask
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Splat: a material on another number type
+// ---------------------------------------------------------------------------------------------
+
+/// A material (model, NDF, Fresnel or masking term) built on a scalar, re-expressed on
+/// another [`Real`]: the same parameters, with every per-material constant converted to the
+/// new type.
+///
+/// Constructors validate their parameters once, on scalars; `splat` then gives the same
+/// material on SIMD lanes (`f32` → [`f32x8`]: each constant broadcast to every lane) or on
+/// [`F32Fma`] (what the batch kernels use), without validating or deriving anything again.
+/// Constants go through `f64` and are rounded to the target precision, so `f32` → `f32x8`,
+/// `f32` → `F32Fma` and `f64` → [`f64x4`] keep every bit, and `f64` → `f32` rounds once.
+///
+/// Every model and term of this crate implements it; [`crate::batch`] needs it. A model of
+/// your own that is generic over `R: Real` implements it by converting its fields:
+///
+/// ```
+/// use brdf::{Brdf, Real, Scalar, Vec3, real::Splat, models::{Properties, Reciprocity, Energy}};
+///
+/// /// A constant BRDF `ρ/π`.
+/// struct Flat<R> { rho_over_pi: R }
+///
+/// impl<R: Real> Brdf<R, 1> for Flat<R> {
+///     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; 1] {
+///         let up = wi.z.gt(R::zero()) & wo.z.gt(R::zero());
+///         [R::select(up, self.rho_over_pi, R::zero())]
+///     }
+///     fn properties(&self) -> Properties {
+///         Properties { reciprocity: Reciprocity::Reciprocal, energy: Energy::Conserving }
+///     }
+/// }
+///
+/// impl<S: Scalar> Splat for Flat<S> {
+///     type On<L: Real> = Flat<L>;
+///     fn splat<L: Real>(&self) -> Flat<L> {
+///         Flat { rho_over_pi: L::from_f64(self.rho_over_pi.into()) }
+///     }
+/// }
+///
+/// let wide = Flat { rho_over_pi: 0.25f32 }.splat::<brdf::f32x8>();
+/// let up = Vec3::new(brdf::f32x8::splat(0.0), brdf::f32x8::splat(0.0), brdf::f32x8::splat(1.0));
+/// assert_eq!(wide.eval(up, up)[0], brdf::f32x8::splat(0.25));
+/// ```
+pub trait Splat {
+    /// The same type with its number type replaced by `L`.
+    type On<L: Real>;
+    /// The same material on `L`.
+    fn splat<L: Real>(&self) -> Self::On<L>;
+}
+
+/// `x` on `L` (through `f64`: exact for `f32` and `f64` sources on a type of at least the
+/// source's precision).
+#[inline]
+pub(crate) fn splat_scalar<S: Scalar, L: Real>(x: S) -> L {
+    L::from_f64(x.into())
+}
+
+/// Every element of `x` on `L`.
+#[inline]
+pub(crate) fn splat_array<S: Scalar, L: Real, const N: usize>(x: &[S; N]) -> [L; N] {
+    core::array::from_fn(|i| splat_scalar(x[i]))
+}
+
+/// Implements [`Splat`] for unit structs (masking terms, policy types) that hold no number:
+/// they are their own image on every type.
+macro_rules! splat_as_itself {
+    ($($t:ty),* $(,)?) => {
+        $(
+            impl $crate::real::Splat for $t {
+                type On<L: $crate::Real> = $t;
+                #[inline]
+                fn splat<L: $crate::Real>(&self) -> $t {
+                    *self
+                }
+            }
+        )*
+    };
+}
+pub(crate) use splat_as_itself;
+
 #[cfg(test)]
 mod tests {
     use super::*;

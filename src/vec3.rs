@@ -8,7 +8,8 @@
 //! glam types convert in at the API edge: `Vec3<f32>: From<glam::Vec3>`,
 //! `Vec3<f64>: From<glam::DVec3>` and `Vec3<f32x8>: From<[glam::Vec3; 8]>`.
 
-use crate::real::{Real, f32x4, f32x8, f32x16};
+use crate::Scalar;
+use crate::real::{Real, Splat, f32x4, f32x8, f32x16, splat_scalar};
 
 /// A 3-vector whose components are [`Real`]s (one direction per lane).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -81,6 +82,19 @@ impl<R: Real> Vec3<R> {
     pub fn reflect(self, n: Self) -> Self {
         n.scale(R::from_f64(2.0) * self.dot(n))
             .add(self.scale(-R::one()))
+    }
+}
+
+/// The same vector on another number type (every lane the same direction on lanes).
+impl<S: Scalar> Splat for Vec3<S> {
+    type On<L: Real> = Vec3<L>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Vec3<L> {
+        Vec3::new(
+            splat_scalar(self.x),
+            splat_scalar(self.y),
+            splat_scalar(self.z),
+        )
     }
 }
 

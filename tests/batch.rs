@@ -1,8 +1,10 @@
 //! The batch path: every instruction-set variant this CPU can run, per-pair and pipelined,
-//! equals the scalar `eval` bit for bit.
+//! equals the scalar `eval` bit for bit — on `f32` for the portable loop, on `F32Fma` (the
+//! model's fused form) for the AVX2+FMA and AVX-512 loops — and the fused form stays within
+//! a stated bound of the `f32` one.
 mod common;
 
-use brdf::batch::{self, Directions, Isa};
+use brdf::batch::{self, BatchBrdf, Directions, Isa};
 use brdf::fast::{ExactPow, FastPow};
 use brdf::fresnel::{Conductor, Schlick};
 use brdf::masking::{SmithHeightCorrelated, SmithSeparable};
@@ -12,6 +14,7 @@ use brdf::models::{
 };
 use brdf::ndf::{Ggx, GgxIsotropic};
 use brdf::normalization::Normalization;
+use brdf::real::F32Fma;
 use brdf::{Brdf, Vec3, ior};
 
 /// `n` direction pairs by warping a deterministic low-discrepancy sequence over the
@@ -39,13 +42,48 @@ fn pairs(n: usize) -> [Vec<f32>; 6] {
 type Entry<B, const N: usize> =
     fn(Isa, &B, Directions<'_>, Directions<'_>, [&mut [f32]; N]) -> Result<(), batch::Unavailable>;
 
-/// Runs every available variant of `entry` on `n` pairs and requires the scalar `eval` on
-/// `f32` bit for bit (`mul_add` fuses only with compile-time FMA, and then everywhere).
-/// Returns how many variants ran.
-fn check_entry<B: Brdf<f32, N>, const N: usize>(brdf: &B, n: usize, entry: Entry<B, N>) -> usize {
+/// Runs every available variant of `entry` on `n` pairs and requires, bit for bit, `eval` on
+/// the `f32` model for [`Isa::Portable`] and `eval` on its `F32Fma` form for the FMA
+/// variants (a correctly rounded `fma` is the same number in software and in hardware).
+/// Also requires the `F32Fma` form within `rel` (relative, or absolute below 1e-6 of the
+/// peak value) of the `f32` model, and reports the largest difference. Returns how many
+/// variants ran.
+fn check_entry<B: BatchBrdf<N>, const N: usize>(
+    brdf: &B,
+    n: usize,
+    entry: Entry<B, N>,
+    rel: f64,
+) -> usize {
     let d = pairs(n);
     let wi = Directions::new(&d[0], &d[1], &d[2]);
     let wo = Directions::new(&d[3], &d[4], &d[5]);
+    let fused = brdf.fused();
+    let at = |i: usize| {
+        (
+            Vec3::new(d[0][i], d[1][i], d[2][i]),
+            Vec3::new(d[3][i], d[4][i], d[5][i]),
+        )
+    };
+    let fma = |w: Vec3<f32>| Vec3::new(F32Fma(w.x), F32Fma(w.y), F32Fma(w.z));
+    let plain: Vec<[f32; N]> = (0..n).map(|i| brdf.eval(at(i).0, at(i).1)).collect();
+    let fused_ref: Vec<[f32; N]> = (0..n)
+        .map(|i| fused.eval(fma(at(i).0), fma(at(i).1)).map(|v| v.0))
+        .collect();
+    // The fused form against the f32 one.
+    let peak = plain
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, &v| m.max(f64::from(v)));
+    let mut worst = 0.0f64;
+    for (p, q) in plain.iter().zip(&fused_ref) {
+        for c in 0..N {
+            let (a, b) = (f64::from(q[c]), f64::from(p[c]));
+            let e = (a - b).abs() / b.abs().max(1e-6 * peak).max(f64::MIN_POSITIVE);
+            worst = worst.max(e);
+        }
+    }
+    eprintln!("fused vs f32: max relative difference {worst:.3e} (bound {rel:.1e})");
+    assert!(worst <= rel, "fused vs f32: {worst:e} > {rel:e}");
     let mut ran = 0;
     for isa in Isa::ALL {
         let mut out = vec![vec![f32::NAN; n]; N];
@@ -60,13 +98,14 @@ fn check_entry<B: Brdf<f32, N>, const N: usize>(brdf: &B, n: usize, entry: Entry
             }
             Ok(()) => ran += 1,
         }
+        let reference = if isa == Isa::Portable {
+            &plain
+        } else {
+            &fused_ref
+        };
         for i in 0..n {
-            let f = brdf.eval(
-                Vec3::new(d[0][i], d[1][i], d[2][i]),
-                Vec3::new(d[3][i], d[4][i], d[5][i]),
-            );
             for c in 0..N {
-                let (a, b) = (out[c][i], f[c]);
+                let (a, b) = (out[c][i], reference[i][c]);
                 assert!(a.is_finite(), "{isa:?} produced {a} at {i}");
                 assert_eq!(
                     a.to_bits(),
@@ -81,18 +120,22 @@ fn check_entry<B: Brdf<f32, N>, const N: usize>(brdf: &B, n: usize, entry: Entry
 }
 
 /// [`check_entry`] with the per-pair loop.
-fn check<B: Brdf<f32, N>, const N: usize>(brdf: &B, n: usize) -> usize {
-    check_entry(brdf, n, batch::eval_with)
+fn check<B: BatchBrdf<N>, const N: usize>(brdf: &B, n: usize, rel: f64) -> usize {
+    check_entry(brdf, n, batch::eval_with, rel)
 }
 
 /// [`check_entry`] with both loops, for a model with a pipelined evaluation, at lengths that
 /// cover an empty batch, a single pair, a partial block and several blocks plus a tail.
-fn check_pipelined<B: batch::Pipelined<N>, const N: usize>(brdf: &B) {
+fn check_pipelined<B, const N: usize>(brdf: &B, rel: f64)
+where
+    B: BatchBrdf<N> + batch::Pipelined<f32, N>,
+    B::Fused: batch::Pipelined<F32Fma, N>,
+{
     for n in [0, 1, 1031, 2 * batch::BLOCK + 517] {
         eprintln!("per-pair {n}");
-        check(brdf, n);
+        check(brdf, n, rel);
         eprintln!("pipelined {n}");
-        check_entry(brdf, n, batch::eval_pipelined_with);
+        check_entry(brdf, n, batch::eval_pipelined_with, rel);
     }
 }
 
@@ -104,7 +147,7 @@ fn every_available_variant_matches_scalar_ggx_schlick() {
         SmithHeightCorrelated,
     );
     // 1031: not a multiple of any lane width, so the scalar tail runs too.
-    check(&ct, 1031);
+    check(&ct, 1031, 1e-6);
 }
 
 #[test]
@@ -115,21 +158,27 @@ fn every_available_variant_matches_scalar_rough_conductor_rgb() {
         SmithSeparable,
     );
     let sum = Sum::new(ct, Lambert::<f32, 3>::new([0.1, 0.2, 0.3]).unwrap());
-    check(&sum, 517);
+    check(&sum, 517, 1e-6);
 }
 
 #[test]
 fn pipelined_cook_torrance_matches_scalar() {
-    check_pipelined(&CookTorrance::new(
-        GgxIsotropic::<f32>::new(0.3).unwrap(),
-        Schlick::<f32, 1>::new([0.04]).unwrap(),
-        SmithHeightCorrelated,
-    ));
-    check_pipelined(&CookTorrance::new(
-        Ggx::<f32>::anisotropic(0.05, 0.4).unwrap(),
-        Conductor::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB),
-        SmithSeparable,
-    ));
+    check_pipelined(
+        &CookTorrance::new(
+            GgxIsotropic::<f32>::new(0.3).unwrap(),
+            Schlick::<f32, 1>::new([0.04]).unwrap(),
+            SmithHeightCorrelated,
+        ),
+        1e-6,
+    );
+    check_pipelined(
+        &CookTorrance::new(
+            Ggx::<f32>::anisotropic(0.05, 0.4).unwrap(),
+            Conductor::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB),
+            SmithSeparable,
+        ),
+        1e-6,
+    );
 }
 
 #[test]
@@ -138,6 +187,7 @@ fn pipelined_normalized_blinn_phong_matches_scalar() {
     check_pipelined(
         &NormalizedBlinnPhong::<f32, 1, CosThetaI, FastPow>::new([0.5], 0.5, [0.04], 64.0, fit)
             .unwrap(),
+        1e-6,
     );
     check_pipelined(
         &NormalizedBlinnPhong::<f32, 3, MaxCos, ExactPow>::new(
@@ -148,6 +198,7 @@ fn pipelined_normalized_blinn_phong_matches_scalar() {
             Normalization::TriAceExact,
         )
         .unwrap(),
+        1e-6,
     );
     check_pipelined(
         &NormalizedBlinnPhongSpecular::<f32, 3, CosThetaI, FastPow>::new(
@@ -157,6 +208,7 @@ fn pipelined_normalized_blinn_phong_matches_scalar() {
             fit,
         )
         .unwrap(),
+        1e-6,
     );
 }
 

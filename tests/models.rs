@@ -1,12 +1,13 @@
 //! BRDF models: values against independent (trigonometric, published) formulations, the
-//! compositions, and SIMD-lane equivalence of every model's `eval`.
+//! compositions, SIMD-lane equivalence of every model's `eval`, and `Splat` of every model
+//! (to lanes, to `F32Fma`, to `f64`).
 mod common;
 
 use brdf::Vec3;
-use brdf::fresnel::{Conductor, FresnelTerm, Schlick};
-use brdf::masking::{Masking, SmithHeightCorrelated};
+use brdf::fresnel::{Conductor, Dielectric, F82Tint, FresnelTerm, Schlick};
+use brdf::masking::{HammonApprox, Masking, SmithHeightCorrelated, SmithSeparable, VCavity};
 use brdf::models::*;
-use brdf::ndf::{Ggx, Ndf};
+use brdf::ndf::{Beckmann, Ggx, GgxIsotropic, Ndf};
 use brdf::normalization::tri_ace_exact;
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -270,9 +271,13 @@ fn rows() -> Vec<[f64; 7]> {
 }
 
 /// `assert_lanes_match!` for a model built from `PARAMS[k]` (`$p`) with scalar conversion
-/// `$s`, evaluated on the row's directions; returns the worst ULP.
+/// `$s`, evaluated on the row's directions; then [`splat_check!`] for the same model. Returns
+/// the worst lane ULP.
 macro_rules! lanes {
-    ($name:expr, ulp = $ulp:expr, abs = $abs:expr, |$s:ident, $p:ident| $make:expr) => {{
+    ($name:expr, ulp = $ulp:expr, abs = $abs:expr, |$s:ident, $p:ident| $make:expr) => {
+        lanes!($name, ulp = $ulp, fused = 8, abs = $abs, |$s, $p| $make)
+    };
+    ($name:expr, ulp = $ulp:expr, fused = $fused:expr, abs = $abs:expr, |$s:ident, $p:ident| $make:expr) => {{
         let rows = rows();
         let w = common::assert_lanes_match!($name, ulp = $ulp, abs = $abs, &rows,
             fn(k, ax, ay, az, bx, by, bz) {
@@ -280,10 +285,108 @@ macro_rules! lanes {
                 let $p: [f64; 8] = PARAMS[k as usize];
                 let $s = |x: f64| <R::Scalar as brdf::Scalar>::of(x);
                 let m = $make;
-                brdf::models::Brdf::eval(&m, brdf::Vec3::new(ax, ay, az), brdf::Vec3::new(bx, by, bz))[0]
+                brdf::models::Brdf::<R, 1>::eval(&m, brdf::Vec3::new(ax, ay, az), brdf::Vec3::new(bx, by, bz))[0]
             });
         println!("{}: worst {} ulp", $name, w);
+        splat_check!($name, ulp = $ulp, fused = $fused, abs = $abs, |$s, $p| $make);
         w
+    }};
+}
+
+/// [`brdf::real::Splat`] of a model built on `f32` from `PARAMS[k]`, on the rows'
+/// directions:
+/// * on `f32x8`, every lane within `ulp` (or `abs`) of the `f32` model — the bound of the
+///   lane test, since the lane formulas are the same;
+/// * on `F32Fma`, within `ulp` (or `abs`) of the `f32` model: the fused products are the
+///   only difference;
+/// * on `f64` (the `f32` constants, widened), within 1e-4 relative (or 1e-6 of the peak) of
+///   the model built on `f64`: the constants differ by the `f32` rounding of the parameters
+///   only, so a constant that went to the wrong field shows at once.
+macro_rules! splat_check {
+    ($name:expr, ulp = $ulp:expr, fused = $fused:expr, abs = $abs:expr, |$s:ident, $p:ident| $make:expr) => {{
+        use brdf::real::{F32Fma, Splat};
+        use brdf::{Brdf, Real, f32x8};
+        let rows = rows();
+        let (mut worst_lane, mut worst_fused, mut worst_f64) = (0u64, 0u64, 0.0f64);
+        for chunk in rows.chunks(8) {
+            let $p: [f64; 8] = PARAMS[chunk[0][0] as usize];
+            let m32 = {
+                #[allow(dead_code)]
+                type R = f32;
+                let $s = |x: f64| x as f32;
+                $make
+            };
+            let m64 = {
+                #[allow(dead_code)]
+                type R = f64;
+                let $s = |x: f64| x;
+                $make
+            };
+            let (s8, sf, s64) = (
+                m32.splat::<f32x8>(),
+                m32.splat::<F32Fma>(),
+                m32.splat::<f64>(),
+            );
+            let col = |c: usize| f32x8::from_fn(|l| chunk[l][c] as f32);
+            let v8 = Brdf::<f32x8, 1>::eval(
+                &s8,
+                Vec3::new(col(1), col(2), col(3)),
+                Vec3::new(col(4), col(5), col(6)),
+            )[0];
+            let peak = chunk
+                .iter()
+                .map(|r| {
+                    Brdf::<f64, 1>::eval(
+                        &m64,
+                        Vec3::new(r[1], r[2], r[3]),
+                        Vec3::new(r[4], r[5], r[6]),
+                    )[0]
+                })
+                .fold(0.0f64, f64::max);
+            for (l, r) in chunk.iter().enumerate() {
+                let w32 = |a: usize| Vec3::new(r[a] as f32, r[a + 1] as f32, r[a + 2] as f32);
+                let fma = |w: Vec3<f32>| Vec3::new(F32Fma(w.x), F32Fma(w.y), F32Fma(w.z));
+                let a = Brdf::<f32, 1>::eval(&m32, w32(1), w32(4))[0];
+                let lane = v8.lane(l);
+                let d = common::ulps::<f32>(lane, a);
+                let close = (lane - a).abs() <= $abs;
+                assert!(
+                    d <= $ulp || close,
+                    "{}: splat f32x8 lane {l} = {lane:e}, f32 = {a:e} ({d} ulp) at {r:?}",
+                    $name
+                );
+                if !close {
+                    worst_lane = worst_lane.max(d);
+                }
+                let b = Brdf::<F32Fma, 1>::eval(&sf, fma(w32(1)), fma(w32(4)))[0].0;
+                let d = common::ulps::<f32>(b, a);
+                let close = (b - a).abs() <= $abs;
+                assert!(
+                    d <= $fused || close,
+                    "{}: splat F32Fma = {b:e}, f32 = {a:e} ({d} ulp) at {r:?}",
+                    $name
+                );
+                if !close {
+                    worst_fused = worst_fused.max(d);
+                }
+                let (wi, wo) = (Vec3::new(r[1], r[2], r[3]), Vec3::new(r[4], r[5], r[6]));
+                let (c, e) = (
+                    Brdf::<f64, 1>::eval(&s64, wi, wo)[0],
+                    Brdf::<f64, 1>::eval(&m64, wi, wo)[0],
+                );
+                let rel = (c - e).abs() / e.abs().max(1e-6 * peak).max(1e-300);
+                assert!(
+                    rel <= 1e-4,
+                    "{}: splat f64 of the f32 model = {c:e}, f64 model = {e:e} at {r:?}",
+                    $name
+                );
+                worst_f64 = worst_f64.max(rel);
+            }
+        }
+        println!(
+            "{}: splat worst f32x8 {worst_lane} ulp, F32Fma {worst_fused} ulp, f64 {worst_f64:.2e}",
+            $name
+        );
     }};
 }
 
@@ -291,6 +394,9 @@ macro_rules! lanes {
 // lane type; the residue is mul_add fusing differently); 4 for exp-based Ward; 32 where a
 // `pow` with exponents up to 2·10⁴ amplifies the few-ULP difference between wide's and std's
 // kernels (measured worst: 23, nbp_maxcos_fit); 8 for Cook-Torrance (GGX + Smith + Schlick).
+// F32Fma against f32 (`fused`): 8 by default (measured worst 5, the Layered composition);
+// 64 for Kajiya-Kay, whose pow(sin, p) with p up to 2·10⁴ amplifies the rounding of the fused
+// tangent products (measured worst 51).
 
 #[test]
 fn lanes_diffuse_models() {
@@ -394,7 +500,7 @@ fn lanes_lafortune_kajiya_kay() {
         ]
     )
     .unwrap());
-    lanes!("kajiya_kay", ulp = 32, abs = 1e-30, |s, p| {
+    lanes!("kajiya_kay", ulp = 32, fused = 64, abs = 1e-30, |s, p| {
         KajiyaKay::<R, 1>::normalized(
             [s(p[0])],
             [s(p[1])],
@@ -423,6 +529,51 @@ fn lanes_cook_torrance_and_compositions() {
         ),
         Schlick::<R, 1>::new([s(p[2])]).unwrap(),
     ));
+    lanes!(
+        "ct_ggx_isotropic_conductor_sep",
+        ulp = 8,
+        abs = 1e-30,
+        |s, p| {
+            CookTorrance::new(
+                GgxIsotropic::<R>::new(s(alpha(p[4]))).unwrap(),
+                Conductor::<R, 1>::new([s(0.2 + 3.0 * p[6])], [s(10.0 * p[7])]).unwrap(),
+                SmithSeparable,
+            )
+        }
+    );
+    lanes!(
+        "ct_beckmann_dielectric_vcavity",
+        ulp = 8,
+        abs = 1e-30,
+        |s, p| {
+            CookTorrance::new(
+                Beckmann::<R>::anisotropic(s(alpha(p[4])), s(alpha(p[5]))).unwrap(),
+                Dielectric::<R>::new(s(1.0 + 2.0 * p[6])).unwrap(),
+                VCavity,
+            )
+        }
+    );
+    lanes!("ct_ggx_f82_hammon", ulp = 8, abs = 1e-30, |s, p| {
+        CookTorrance::new(
+            Ggx::<R>::new(s(alpha(p[5]))).unwrap(),
+            F82Tint::<R, 1>::new([s(p[2])], [s(p[1])]).unwrap(),
+            HammonApprox,
+        )
+    });
+    lanes!("sum", ulp = 8, abs = 1e-30, |s, p| Sum::new(
+        Lambert::<R, 1>::new([s(p[0] * 0.5)]).unwrap(),
+        OrenNayar::<R, 1>::new([s(p[1] * 0.5)], s(p[7])).unwrap(),
+    ));
+    lanes!("nbp_seed_fast_pow", ulp = 8, abs = 1e-30, |s, p| {
+        NormalizedBlinnPhong::<R, 1, CosThetaI, brdf::fast::FastPow>::new(
+            [s(p[0])],
+            s(p[1]),
+            [s(p[2])],
+            s(exponent(p[3])),
+            Normalization::TRI_ACE_2009_FIT,
+        )
+        .unwrap()
+    });
 }
 
 /// The fast-pow variant of the normalized Blinn-Phong stays within the documented 1e-5

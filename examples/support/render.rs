@@ -169,7 +169,7 @@ fn frame(n: V3, tangents: Tangents) -> (V3, V3) {
 }
 
 /// Renders `brdf` on a sphere of `size` pixels under `lighting`.
-pub fn sphere<B: Brdf<f32, 3>>(
+pub fn sphere<B: batch::BatchBrdf<3>>(
     brdf: &B,
     albedo: &AlbedoTable,
     lighting: &Lighting,

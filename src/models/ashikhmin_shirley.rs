@@ -4,7 +4,9 @@ use super::{
     Brdf, DENOM_FLOOR, Energy, Properties, Reciprocity, half_and_cos_d, masked, safe_dirs,
     splat_channels, unit_channels,
 };
+use crate::Scalar;
 use crate::fresnel::schlick_complement;
+use crate::real::{Splat, splat_array, splat_scalar};
 use crate::{Error, Real, Vec3};
 
 /// Ashikhmin and Shirley's anisotropic Phong model: a Schlick-Fresnel anisotropic lobe and
@@ -86,6 +88,20 @@ impl<R: Real, const N: usize> AshikhminShirley<R, N> {
             nu: R::from_f64(nu),
             nv: R::from_f64(nv),
         })
+    }
+}
+
+impl<S: Scalar, const N: usize> Splat for AshikhminShirley<S, N> {
+    type On<L: Real> = AshikhminShirley<L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> AshikhminShirley<L, N> {
+        AshikhminShirley {
+            rs: splat_array(&self.rs),
+            diffuse_k: splat_array(&self.diffuse_k),
+            spec_k: splat_scalar(self.spec_k),
+            nu: splat_scalar(self.nu),
+            nv: splat_scalar(self.nv),
+        }
     }
 }
 

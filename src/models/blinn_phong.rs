@@ -27,6 +27,7 @@ use super::{
 };
 use crate::fast::{ExactPow, PowFn};
 use crate::normalization::{Normalization, TRI_ACE_OFFSET};
+use crate::real::{Splat, splat_array, splat_scalar};
 use crate::{Error, Real, Scalar, Vec3};
 
 /// Validates a Phong exponent: finite and `≥ 0`.
@@ -123,6 +124,19 @@ impl<R: Real, const N: usize> BlinnPhongClassic<R, N> {
         let spec = self.specular_out(wi, wo);
         let r: [R; N] = crate::real::channels(|c| self.rd[c].mul_add(wi.z, spec[c]));
         masked(m, r)
+    }
+}
+
+impl<S: Scalar, const N: usize> Splat for BlinnPhongClassic<S, N> {
+    type On<L: Real> = BlinnPhongClassic<L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> BlinnPhongClassic<L, N> {
+        BlinnPhongClassic {
+            rd: splat_array(&self.rd),
+            rs: splat_scalar(self.rs),
+            f0: splat_array(&self.f0),
+            shininess: splat_scalar(self.shininess),
+        }
     }
 }
 
@@ -287,6 +301,22 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn>
     }
 }
 
+impl<S: Scalar, const N: usize, V: SpecularDenominator, P: PowFn> Splat
+    for NormalizedBlinnPhongSpecular<S, N, V, P>
+{
+    type On<L: Real> = NormalizedBlinnPhongSpecular<L, N, V, P>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Self::On<L> {
+        NormalizedBlinnPhongSpecular {
+            rs_c: splat_scalar(self.rs_c),
+            f0: splat_array(&self.f0),
+            half_shininess: splat_scalar(self.half_shininess),
+            normalization: self.normalization,
+            _v: PhantomData,
+        }
+    }
+}
+
 impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
     for NormalizedBlinnPhongSpecular<R, N, V, P>
 {
@@ -366,6 +396,18 @@ impl<R: Real, const N: usize> CoupledLambert<R, N> {
             rs: R::from_f64(rs),
             f0: splat_channels(f0),
         })
+    }
+}
+
+impl<S: Scalar, const N: usize> Splat for CoupledLambert<S, N> {
+    type On<L: Real> = CoupledLambert<L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> CoupledLambert<L, N> {
+        CoupledLambert {
+            rd_over_pi: splat_array(&self.rd_over_pi),
+            rs: splat_scalar(self.rs),
+            f0: splat_array(&self.f0),
+        }
     }
 }
 
@@ -453,6 +495,19 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> NormalizedBlinnP
     }
 }
 
+impl<S: Scalar, const N: usize, V: SpecularDenominator, P: PowFn> Splat
+    for NormalizedBlinnPhong<S, N, V, P>
+{
+    type On<L: Real> = NormalizedBlinnPhong<L, N, V, P>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Self::On<L> {
+        NormalizedBlinnPhong {
+            diffuse: self.diffuse.splat(),
+            specular: self.specular.splat(),
+        }
+    }
+}
+
 impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
     for NormalizedBlinnPhong<R, N, V, P>
 {
@@ -488,17 +543,19 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
 /// (`exp2`) and `pow·k + d`, block by block — the same bodies as `eval`, so the same bits. For the specular
 /// lobe alone `diffuse` returns 0 (and `p·k + 0 = p·k`, as `p·k ≥ 0`).
 #[inline(always)]
-fn nbp_passes<const N: usize, V: SpecularDenominator, P: PowFn>(
-    specular: &NormalizedBlinnPhongSpecular<f32, N, V, P>,
-    diffuse: impl Fn(Vec3<f32>, Vec3<f32>) -> [f32; N],
+fn nbp_passes<K, const N: usize, V: SpecularDenominator, P: PowFn>(
+    specular: &NormalizedBlinnPhongSpecular<K, N, V, P>,
+    diffuse: impl Fn(Vec3<K>, Vec3<K>) -> [K; N],
     wi: crate::batch::Directions<'_>,
     wo: crate::batch::Directions<'_>,
     out: [&mut [f32]; N],
-) {
+) where
+    K: Real<Scalar = f32, Mask = bool>,
+{
     use crate::batch::BLOCK;
-    let mut x = [0.0f32; BLOCK];
-    let mut k = [[0.0f32; BLOCK]; N];
-    let mut d = [[0.0f32; BLOCK]; N];
+    let mut x = [K::zero(); BLOCK];
+    let mut k = [[K::zero(); BLOCK]; N];
+    let mut d = [[K::zero(); BLOCK]; N];
     let y = specular.half_shininess;
     crate::batch::for_each_block(
         wi,
@@ -513,8 +570,8 @@ fn nbp_passes<const N: usize, V: SpecularDenominator, P: PowFn>(
             // Pass 1: geometry, Fresnel, diffuse.
             for i in 0..n {
                 let (wi, wo) = (
-                    Vec3::new(ix[i], iy[i], iz[i]),
-                    Vec3::new(ox[i], oy[i], oz[i]),
+                    Vec3::new(K::splat(ix[i]), K::splat(iy[i]), K::splat(iz[i])),
+                    Vec3::new(K::splat(ox[i]), K::splat(oy[i]), K::splat(oz[i])),
                 );
                 let (cos2_m, kk) = specular.lobe_parts(wi, wo);
                 let dd = diffuse(wi, wo);
@@ -533,16 +590,17 @@ fn nbp_passes<const N: usize, V: SpecularDenominator, P: PowFn>(
             for i in 0..n {
                 let p = P::finish(x[i], y);
                 for c in 0..N {
-                    // `Real::mul_add`, as in `eval` (the inherent `f32::mul_add` always fuses).
-                    block[c][i] = Real::mul_add(p, k[c][i], d[c][i]);
+                    block[c][i] = p.mul_add(k[c][i], d[c][i]).lane(0);
                 }
             }
         },
     );
 }
 
-impl<const N: usize, V: SpecularDenominator, P: PowFn> crate::batch::Pipelined<N>
-    for NormalizedBlinnPhong<f32, N, V, P>
+impl<K, const N: usize, V: SpecularDenominator, P: PowFn> crate::batch::Pipelined<K, N>
+    for NormalizedBlinnPhong<K, N, V, P>
+where
+    K: Real<Scalar = f32, Mask = bool>,
 {
     #[inline(always)]
     fn eval_passes(
@@ -561,8 +619,10 @@ impl<const N: usize, V: SpecularDenominator, P: PowFn> crate::batch::Pipelined<N
     }
 }
 
-impl<const N: usize, V: SpecularDenominator, P: PowFn> crate::batch::Pipelined<N>
-    for NormalizedBlinnPhongSpecular<f32, N, V, P>
+impl<K, const N: usize, V: SpecularDenominator, P: PowFn> crate::batch::Pipelined<K, N>
+    for NormalizedBlinnPhongSpecular<K, N, V, P>
+where
+    K: Real<Scalar = f32, Mask = bool>,
 {
     #[inline(always)]
     fn eval_passes(
@@ -571,6 +631,6 @@ impl<const N: usize, V: SpecularDenominator, P: PowFn> crate::batch::Pipelined<N
         wo: crate::batch::Directions<'_>,
         out: [&mut [f32]; N],
     ) {
-        nbp_passes(self, |_, _| [0.0; N], wi, wo, out);
+        nbp_passes(self, |_, _| [K::zero(); N], wi, wo, out);
     }
 }

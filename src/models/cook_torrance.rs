@@ -7,6 +7,7 @@ use super::{Brdf, Energy, Properties, Reciprocity, half_and_cos_d, upper};
 use crate::fresnel::FresnelTerm;
 use crate::masking::Masking;
 use crate::ndf::Ndf;
+use crate::real::Splat;
 use crate::{Real, Vec3};
 
 /// Microfacet reflection `f = D · F · G2 / (4 cos θi cos θo)`, generic over its parts.
@@ -21,7 +22,7 @@ use crate::{Real, Vec3};
 /// approximate visibility monomorphizes exactly that and pays for nothing else. The body
 /// calls `G::visibility`, which approximate terms override with their cheaper direct forms.
 ///
-/// [`crate::batch::Pipelined`] is implemented for `f32`: the geometry (`cos θd`, `D·V`) and the
+/// [`crate::batch::Pipelined`] is implemented on `f32` and [`crate::real::F32Fma`]: the geometry (`cos θd`, `D·V`) and the
 /// Fresnel term run as separate passes over a block, bit-identical to `eval`.
 ///
 /// Below the horizon the result is replaced by 0 with a final select; the parts still run
@@ -86,11 +87,12 @@ impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>> CookTorrance<R, D, F, G> {
     }
 }
 
-impl<const N: usize, D, F, G> crate::batch::Pipelined<N> for CookTorrance<f32, D, F, G>
+impl<K, const N: usize, D, F, G> crate::batch::Pipelined<K, N> for CookTorrance<K, D, F, G>
 where
-    D: Ndf<f32>,
-    F: FresnelTerm<f32, N>,
-    G: Masking<f32, D>,
+    K: Real<Scalar = f32, Mask = bool>,
+    D: Ndf<K>,
+    F: FresnelTerm<K, N>,
+    G: Masking<K, D>,
 {
     /// Two passes per block: the microfacet geometry (`cos θd`, `D·V`: the half vector's
     /// square root, the masking roots, one division), then the Fresnel term and the product.
@@ -102,8 +104,8 @@ where
         out: [&mut [f32]; N],
     ) {
         use crate::batch::BLOCK;
-        let mut cos_d = [0.0f32; BLOCK];
-        let mut dv = [0.0f32; BLOCK];
+        let mut cos_d = [K::zero(); BLOCK];
+        let mut dv = [K::zero(); BLOCK];
         crate::batch::for_each_block(
             wi,
             wo,
@@ -116,19 +118,32 @@ where
                 let (cos_d, dv) = (&mut cos_d[..n], &mut dv[..n]);
                 for i in 0..n {
                     (cos_d[i], dv[i]) = self.geometry(
-                        Vec3::new(ix[i], iy[i], iz[i]),
-                        Vec3::new(ox[i], oy[i], oz[i]),
+                        Vec3::new(K::splat(ix[i]), K::splat(iy[i]), K::splat(iz[i])),
+                        Vec3::new(K::splat(ox[i]), K::splat(oy[i]), K::splat(oz[i])),
                     );
                 }
                 let block = block.map(|o| &mut o[..n]);
                 for i in 0..n {
                     let f = self.fresnel.eval(cos_d[i]);
                     for c in 0..N {
-                        block[c][i] = f[c] * dv[i];
+                        block[c][i] = (f[c] * dv[i]).lane(0);
                     }
                 }
             },
         );
+    }
+}
+
+impl<R, D: Splat, F: Splat, G: Splat> Splat for CookTorrance<R, D, F, G> {
+    type On<L: Real> = CookTorrance<L, D::On<L>, F::On<L>, G::On<L>>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Self::On<L> {
+        CookTorrance {
+            ndf: self.ndf.splat(),
+            fresnel: self.fresnel.splat(),
+            masking: self.masking.splat(),
+            _r: PhantomData,
+        }
     }
 }
 

@@ -3,6 +3,8 @@
 use super::{
     Brdf, Energy, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
 };
+use crate::Scalar;
+use crate::real::{Splat, splat_array, splat_scalar};
 use crate::{Error, Real, Vec3};
 
 /// `ln Γ(x)` for `x > 0` (Stirling series after shifting `x ≥ 10`; ~1e-15 relative).
@@ -148,6 +150,20 @@ impl<R: Real, const N: usize> KajiyaKay<R, N> {
         tangent: [R::Scalar; 3],
     ) -> Result<Self, Error> {
         Self::build(kd, ks, p, tangent, true)
+    }
+}
+
+impl<S: Scalar, const N: usize> Splat for KajiyaKay<S, N> {
+    type On<L: Real> = KajiyaKay<L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> KajiyaKay<L, N> {
+        KajiyaKay {
+            t: self.t.splat(),
+            kd_over_pi: splat_array(&self.kd_over_pi),
+            ks_c: splat_array(&self.ks_c),
+            p: splat_scalar(self.p),
+            normalized: self.normalized,
+        }
     }
 }
 

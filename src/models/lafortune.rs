@@ -3,6 +3,8 @@
 use super::{
     Brdf, Energy, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
 };
+use crate::Scalar;
+use crate::real::{Splat, splat_array, splat_scalar};
 use crate::{Error, Real, Vec3};
 
 /// Largest allowed `ρ · max(|Cx|, |Cy|, |Cz|)^n` of a lobe: keeps every value finite in
@@ -155,6 +157,27 @@ impl<R: Real, const N: usize, const K: usize> Lafortune<R, N, K> {
     #[must_use]
     pub fn energy_bound(&self) -> [f64; N] {
         self.bound
+    }
+}
+
+impl<S: Scalar, const N: usize, const K: usize> Splat for Lafortune<S, N, K> {
+    type On<L: Real> = Lafortune<L, N, K>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Lafortune<L, N, K> {
+        Lafortune {
+            rho_d_over_pi: splat_array(&self.rho_d_over_pi),
+            lobes: core::array::from_fn(|j| {
+                let l = &self.lobes[j];
+                Lobe {
+                    cx: splat_scalar(l.cx),
+                    cy: splat_scalar(l.cy),
+                    cz: splat_scalar(l.cz),
+                    n: splat_scalar(l.n),
+                    rho: splat_array(&l.rho),
+                }
+            }),
+            bound: self.bound,
+        }
     }
 }
 

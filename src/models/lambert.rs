@@ -1,6 +1,8 @@
 //! Lambertian diffuse reflection.
 
 use super::{Brdf, Energy, Properties, Reciprocity, masked, splat_channels, unit_channels, upper};
+use crate::Scalar;
+use crate::real::{Splat, splat_array};
 use crate::{Error, Real, Vec3};
 
 /// Lambertian (ideal diffuse) reflection.
@@ -42,6 +44,16 @@ impl<R: Real, const N: usize> Lambert<R, N> {
         Ok(Self {
             albedo_over_pi: splat_channels(a.map(|a| a * core::f64::consts::FRAC_1_PI)),
         })
+    }
+}
+
+impl<S: Scalar, const N: usize> Splat for Lambert<S, N> {
+    type On<L: Real> = Lambert<L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Lambert<L, N> {
+        Lambert {
+            albedo_over_pi: splat_array(&self.albedo_over_pi),
+        }
     }
 }
 

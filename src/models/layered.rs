@@ -2,6 +2,7 @@
 
 use super::{Brdf, Energy, Properties, Reciprocity, masked, safe_dirs};
 use crate::fresnel::FresnelTerm;
+use crate::real::Splat;
 use crate::{Real, Vec3};
 
 /// The sum of two models, `f = A + B` (e.g. a diffuse and a specular lobe), composed at
@@ -47,6 +48,17 @@ fn both_reciprocal(a: Properties, b: Properties) -> Reciprocity {
         (Reciprocity::Reciprocal, Reciprocity::Reciprocal) => Reciprocity::Reciprocal,
         (Reciprocity::NotReciprocal { note }, _) | (_, Reciprocity::NotReciprocal { note }) => {
             Reciprocity::NotReciprocal { note }
+        }
+    }
+}
+
+impl<A: Splat, B: Splat> Splat for Sum<A, B> {
+    type On<L: Real> = Sum<A::On<L>, B::On<L>>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Self::On<L> {
+        Sum {
+            a: self.a.splat(),
+            b: self.b.splat(),
         }
     }
 }
@@ -114,6 +126,18 @@ impl<D, S, F> Layered<D, S, F> {
             base,
             coat,
             fresnel,
+        }
+    }
+}
+
+impl<D: Splat, S: Splat, F: Splat> Splat for Layered<D, S, F> {
+    type On<L: Real> = Layered<D::On<L>, S::On<L>, F::On<L>>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Self::On<L> {
+        Layered {
+            base: self.base.splat(),
+            coat: self.coat.splat(),
+            fresnel: self.fresnel.splat(),
         }
     }
 }

@@ -3,6 +3,8 @@
 use super::{
     Brdf, Energy, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
 };
+use crate::Scalar;
+use crate::real::{Splat, splat_array};
 use crate::{Error, Real, Vec3};
 
 /// The qualitative Oren-Nayar model of rough (V-cavity, Gaussian slope) diffuse surfaces.
@@ -65,6 +67,17 @@ impl<R: Real, const N: usize> OrenNayar<R, N> {
             a: splat_channels(k.map(|k| k * a)),
             b: splat_channels(k.map(|k| k * b)),
         })
+    }
+}
+
+impl<S: Scalar, const N: usize> Splat for OrenNayar<S, N> {
+    type On<L: Real> = OrenNayar<L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> OrenNayar<L, N> {
+        OrenNayar {
+            a: splat_array(&self.a),
+            b: splat_array(&self.b),
+        }
     }
 }
 
@@ -148,6 +161,17 @@ impl<R: Real, const N: usize> OrenNayarFujii<R, N> {
             a: splat_channels(k),
             b: splat_channels(k.map(|k| k * s)),
         })
+    }
+}
+
+impl<S: Scalar, const N: usize> Splat for OrenNayarFujii<S, N> {
+    type On<L: Real> = OrenNayarFujii<L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> OrenNayarFujii<L, N> {
+        OrenNayarFujii {
+            a: splat_array(&self.a),
+            b: splat_array(&self.b),
+        }
     }
 }
 

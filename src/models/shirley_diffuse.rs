@@ -3,7 +3,9 @@
 use super::{
     Brdf, Energy, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
 };
+use crate::Scalar;
 use crate::fresnel::schlick_complement;
+use crate::real::{Splat, splat_array};
 use crate::{Error, Real, Vec3};
 
 /// Diffuse reflection under a smooth dielectric coat, with Schlick's Fresnel transmission
@@ -68,6 +70,16 @@ impl<R: Real, const N: usize> ShirleyDiffuse<R, N> {
         Ok(Self {
             k: splat_channels(k),
         })
+    }
+}
+
+impl<S: Scalar, const N: usize> Splat for ShirleyDiffuse<S, N> {
+    type On<L: Real> = ShirleyDiffuse<L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> ShirleyDiffuse<L, N> {
+        ShirleyDiffuse {
+            k: splat_array(&self.k),
+        }
     }
 }
 
