@@ -379,9 +379,9 @@ pub const BLOCK: usize = 1024;
 /// Implemented by [`crate::models::NormalizedBlinnPhong`] and
 /// [`crate::models::NormalizedBlinnPhongSpecular`] (passes: geometry, Fresnel and diffuse;
 /// `y·log₂ x`; `exp2` and the sum), the seed's model, whose chain the `pow` dominates; and by
-/// [`crate::models::CookTorrance`] (passes: `cos θd` and `D·V`; the Fresnel term and the
+/// [`crate::models::CookTorrance`] (passes: `cos θd`, `cos²θd` and `D·V`; the Fresnel term and the
 /// product). Whether it pays depends on the model: see the measured ratios in the README.
-/// Scratch space on the stack: `(1 + 2N)·4` KiB for the normalized Blinn-Phong, 8 KiB for
+/// Scratch space on the stack: `(1 + 2N)·4` KiB for the normalized Blinn-Phong, 12 KiB for
 /// Cook-Torrance.
 pub trait Pipelined<K: Real<Scalar = f32, Mask = bool>, const N: usize>: Brdf<K, N> {
     /// Writes `f(wi[i], wo[i])` to `out[c][i]`, in passes over blocks of [`BLOCK`] pairs

@@ -1508,6 +1508,16 @@ impl<R: Real> FresnelTerm<R, 3> for FresnelModel<R> {
             FresnelModel::One => FresnelTerm::<R, 3>::eval(&NoFresnel, cos_theta_d),
         }
     }
+
+    #[inline]
+    fn eval_cos2(&self, cos_theta_d: R, cos2_theta_d: R) -> [R; 3] {
+        match self {
+            FresnelModel::Dielectric(f) => f.eval_cos2(cos_theta_d, cos2_theta_d),
+            FresnelModel::Conductor(f) => f.eval_cos2(cos_theta_d, cos2_theta_d),
+            FresnelModel::Schlick(f) => f.eval(cos_theta_d),
+            FresnelModel::One => FresnelTerm::<R, 3>::eval(&NoFresnel, cos_theta_d),
+        }
+    }
 }
 
 /// A masking-shadowing term chosen at run time.

@@ -261,6 +261,34 @@ proptest! {
         prop_assert!((r - mine).abs() < 1e-9, "{r} vs {mine}");
     }
 
+    /// `eval_cos2(c, c²)` is `eval(c)` bit for bit for the terms that use `cos²θd`
+    /// (conductor, dielectric), and with `cos²θd` rounded on its own — as a microfacet model
+    /// computes it, `|wi + wo|²/4` — within f32 rounding of it; the other terms ignore it.
+    #[test]
+    fn eval_cos2_is_eval(c in common::cos_theta(), n in eta(), k in kappa()) {
+        let cond = Conductor::<f32, 1>::new([n as f32], [k as f32]).unwrap();
+        let diel = Dielectric::<f32>::new(n as f32).unwrap();
+        let schlick = Schlick::<f32, 1>::new([(k / 100.0) as f32]).unwrap();
+        let c32 = c as f32;
+        prop_assert_eq!(cond.eval_cos2(c32, c32 * c32), cond.eval(c32));
+        prop_assert_eq!(
+            FresnelTerm::<f32, 1>::eval_cos2(&diel, c32, c32 * c32),
+            FresnelTerm::<f32, 1>::eval(&diel, c32)
+        );
+        let c2 = (c * c) as f32;
+        prop_assert_eq!(schlick.eval_cos2(c32, 0.0), schlick.eval(c32));
+        let g2 = n * n - 1.0 + c * c;
+        if g2.abs() > 1e-2 || k > 0.1 {
+            let (a, b) = (cond.eval_cos2(c32, c2)[0], conductor(c, n, k));
+            prop_assert!((f64::from(a) - b).abs() < 2e-5, "conductor {a} vs {b}");
+        }
+        if g2.abs() > 1e-2 {
+            let a = FresnelTerm::<f32, 1>::eval_cos2(&diel, c32, c2)[0];
+            let b = dielectric(c, n);
+            prop_assert!((f64::from(a) - b).abs() < 2e-5, "dielectric {a} vs {b}");
+        }
+    }
+
     /// With k = 0 the conductor is the dielectric seen from outside, for η > 1 and η < 1
     /// (TIR included: both give exactly 1).
     #[test]

@@ -68,22 +68,26 @@ impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>> CookTorrance<R, D, F, G> {
 }
 
 impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>> CookTorrance<R, D, F, G> {
-    /// `(cos θd, D·V)` with `D·V = 0` below the horizon: everything but the Fresnel term.
-    /// Shared by `eval` and the pipelined batch passes (one body).
+    /// `(cos θd, cos²θd, D·V)` with `D·V = 0` below the horizon: everything but the Fresnel
+    /// term. Shared by `eval` and the pipelined batch passes (one body).
     #[inline(always)]
-    fn geometry(&self, wi: Vec3<R>, wo: Vec3<R>) -> (R, R) {
+    fn geometry(&self, wi: Vec3<R>, wo: Vec3<R>) -> (R, R, R) {
         // Lanes with a direction below the horizon compute garbage (possibly NaN) that the
         // select replaces by 0: every operation is lane-wise, so nothing leaks.
         let m = upper(wi, wo);
         // cos θd = wi·wm = wo·wm, computed symmetrically as |wi + wo|/2.
         let (wm, cos_d) = half_and_cos_d(wi, wo);
+        let h = wi + wo;
+        let len2 = h.length_squared();
+        // cos²θd = |wi + wo|²/4, without waiting for the square root of cos θd (the exact
+        // Fresnel terms start from it: FresnelTerm::eval_cos2).
+        let cos2_d = (len2 * R::from_f64(0.25)).min(R::one());
         // D·V with a single division; NDFs written on the unnormalized half vector (GGX) never
         // use `wm`, and then its normalization is not computed at all.
-        let h = wi + wo;
-        let (dn, dd) = self.ndf.d_fraction(wm, h, h.length_squared());
+        let (dn, dd) = self.ndf.d_fraction(wm, h, len2);
         let (vn, vd) = self.masking.visibility_fraction(&self.ndf, wi, wo, wm);
         let dv = (dn * vn) / (dd * vd).max(R::from_f64(1e-30));
-        (cos_d, R::select(m, dv, R::zero()))
+        (cos_d, cos2_d, R::select(m, dv, R::zero()))
     }
 }
 
@@ -105,6 +109,7 @@ where
     ) {
         use crate::batch::BLOCK;
         let mut cos_d = [K::zero(); BLOCK];
+        let mut cos2_d = [K::zero(); BLOCK];
         let mut dv = [K::zero(); BLOCK];
         crate::batch::for_each_block(
             wi,
@@ -115,16 +120,16 @@ where
                 let n = wi.len();
                 let (ix, iy, iz) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
                 let (ox, oy, oz) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
-                let (cos_d, dv) = (&mut cos_d[..n], &mut dv[..n]);
+                let (cos_d, cos2_d, dv) = (&mut cos_d[..n], &mut cos2_d[..n], &mut dv[..n]);
                 for i in 0..n {
-                    (cos_d[i], dv[i]) = self.geometry(
+                    (cos_d[i], cos2_d[i], dv[i]) = self.geometry(
                         Vec3::new(K::splat(ix[i]), K::splat(iy[i]), K::splat(iz[i])),
                         Vec3::new(K::splat(ox[i]), K::splat(oy[i]), K::splat(oz[i])),
                     );
                 }
                 let block = block.map(|o| &mut o[..n]);
                 for i in 0..n {
-                    let f = self.fresnel.eval(cos_d[i]);
+                    let f = self.fresnel.eval_cos2(cos_d[i], cos2_d[i]);
                     for c in 0..N {
                         block[c][i] = (f[c] * dv[i]).lane(0);
                     }
@@ -156,8 +161,8 @@ where
 {
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
-        let (cos_d, dv) = self.geometry(wi, wo);
-        let f = self.fresnel.eval(cos_d);
+        let (cos_d, cos2_d, dv) = self.geometry(wi, wo);
+        let f = self.fresnel.eval_cos2(cos_d, cos2_d);
         crate::real::channels(|c| f[c] * dv)
     }
 
