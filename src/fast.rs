@@ -623,3 +623,49 @@ impl PowFn for FastPow {
         }
     }
 }
+
+/// How a model takes the length of its half vector `h = wi + wo` and normalizes it —
+/// `|h| = √(h·h)` and `1/|h|` — chosen at compile time (a type parameter of
+/// [`crate::models::CookTorrance`] and [`crate::models::BlinnPhongClassic`]), so a scene pays
+/// for the accuracy it asks for.
+///
+/// * [`ExactSqrt`]: the correctly rounded `√x` and `1/√x` (a square root and a division).
+/// * [`NewtonSqrt`]`<STEPS>`: [`rsqrt`]`::<STEPS>(x)`, the estimate of
+///   [`Real::rsqrt_estimate`] refined by `STEPS` Newton steps, and `√x = x · rsqrt(x)`:
+///   multiplies and adds only, no square root or division (relative error in the module docs;
+///   both results carry it).
+///
+/// The trade measured on this crate's models (error and speed against [`ExactSqrt`]) is in
+/// `docs/tradeoffs.md`: on x86 cores with a fast square-root unit the exact path is the faster
+/// one in the batch kernels, while the Newton path can win on lanes and on hardware whose
+/// square root is slow.
+pub trait SqrtFn: Copy + core::fmt::Debug + Default + Send + Sync + 'static {
+    /// `(√x, 1/√x)` for positive normal `x`. At `x = 0` the first is `0` and the second is
+    /// `+∞` ([`ExactSqrt`]) or a large finite value ([`NewtonSqrt`]): callers select it away.
+    fn sqrt_rsqrt<R: Real>(x: R) -> (R, R);
+}
+
+/// [`SqrtFn`] through the correctly rounded [`Real::sqrt`] and a division.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ExactSqrt;
+
+impl SqrtFn for ExactSqrt {
+    #[inline(always)]
+    fn sqrt_rsqrt<R: Real>(x: R) -> (R, R) {
+        let s = x.sqrt();
+        (s, s.recip())
+    }
+}
+
+/// [`SqrtFn`] through [`rsqrt`]`::<STEPS>` (`0 ≤ STEPS ≤ 3` Newton steps): `1/√x ≈ y`,
+/// `√x ≈ x·y`, with no square root or division.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NewtonSqrt<const STEPS: usize>;
+
+impl<const STEPS: usize> SqrtFn for NewtonSqrt<STEPS> {
+    #[inline(always)]
+    fn sqrt_rsqrt<R: Real>(x: R) -> (R, R) {
+        let y = rsqrt::<STEPS, R>(x);
+        (x * y, y)
+    }
+}

@@ -742,6 +742,48 @@ fn rsqrt_within_bounds() {
     }
 }
 
+/// The `SqrtFn` policies: `ExactSqrt` is `(√x, 1/√x)` correctly rounded; `NewtonSqrt<N>` is
+/// `(x·rsqrt::<N>(x), rsqrt::<N>(x))`, both within the `rsqrt` bound of `N` steps (plus one
+/// rounding for the product) over `f32` values from 10⁻³⁰ to 10³⁰, and `(0, finite)` at 0.
+#[test]
+fn sqrt_policies() {
+    use brdf::fast::{ExactSqrt, NewtonSqrt, SqrtFn};
+    fn worst<Q: SqrtFn>() -> (f64, f64) {
+        let (mut ws, mut wr) = (0.0f64, 0.0f64);
+        for i in 0..=60_000 {
+            let x = 10f64.powf(-30.0 + 60.0 * f64::from(i) / 60_000.0) as f32;
+            let (s, r) = Q::sqrt_rsqrt(x);
+            let t = f64::from(x).sqrt();
+            ws = ws.max((f64::from(s) / t - 1.0).abs());
+            wr = wr.max((f64::from(r) * t - 1.0).abs());
+        }
+        let (s0, r0) = Q::sqrt_rsqrt(0.0f32);
+        assert!(s0 == 0.0 && (r0.is_finite() || r0 == f32::INFINITY));
+        (ws, wr)
+    }
+    for x in [1e-30f32, 0.3, 2.0, 7.5e12] {
+        assert_eq!(ExactSqrt::sqrt_rsqrt(x), (x.sqrt(), 1.0 / x.sqrt()));
+        assert_eq!(NewtonSqrt::<2>::sqrt_rsqrt(x).1, fast::rsqrt::<2, f32>(x));
+    }
+    let u = f64::from(f32::EPSILON) / 2.0;
+    let (s, r) = worst::<ExactSqrt>();
+    assert!(s <= u && r <= 2.0 * u, "exact: {s:e} {r:e}");
+    for (n, (s, r)) in [
+        worst::<NewtonSqrt<0>>(),
+        worst::<NewtonSqrt<1>>(),
+        worst::<NewtonSqrt<2>>(),
+        worst::<NewtonSqrt<3>>(),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        println!("NewtonSqrt<{n}>: sqrt {s:.3e}, rsqrt {r:.3e}");
+        assert!(r <= RSQRT_BITS_F32[n], "rsqrt N={n}: {r:e}");
+        assert!(s <= RSQRT_BITS_F32[n] + 2.0 * u, "sqrt N={n}: {s:e}");
+        assert!(NewtonSqrt::<3>::sqrt_rsqrt(0.0f32).1.is_finite());
+    }
+}
+
 #[test]
 fn rsqrt_f64_lanes_equal_scalar_and_f32_lanes_meet_scalar_after_newton() {
     let xs: Vec<f64> = (0..4000)

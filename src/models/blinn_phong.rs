@@ -25,7 +25,7 @@ use super::{
     Brdf, DENOM_FLOOR, Energy, Properties, Reciprocity, half_and_cos_d, masked, safe_dirs,
     splat_channels, unit_channels, upper,
 };
-use crate::fast::{ExactPow, PowFn};
+use crate::fast::{ExactPow, ExactSqrt, PowFn, SqrtFn};
 use crate::normalization::{Normalization, TRI_ACE_OFFSET};
 use crate::real::{Splat, splat_array, splat_scalar};
 use crate::{Error, Real, Scalar, Vec3};
@@ -68,15 +68,21 @@ fn schlick_channels<R: Real, const N: usize>(f0: &[R; N], c: R) -> [R; N] {
 ///
 /// Domain: `R_d, R_s, F0 ∈ [0, 1]`, `s ∈ [0, ∞)`. `cos θi` below [`DENOM_FLOOR`] is floored.
 ///
+/// `S:` [`SqrtFn`] (default [`ExactSqrt`]; choose with [`BlinnPhongClassic::with_sqrt`])
+/// normalizes the half vector, `wm = h/|h|`: engines use a fast reciprocal square root here.
+/// Its relative error `ε` becomes `≈ s·ε` in `(wm.z)^s`, so sharp lobes need more Newton steps
+/// (measured in `docs/tradeoffs.md`).
+///
 /// References: J. F. Blinn, "Models of Light Reflection for Computer Synthesized Pictures",
 /// SIGGRAPH 1977; C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering",
 /// Eurographics 1994; Y. Gotanda, "Basic of Reflectance", tri-Ace, 2009.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BlinnPhongClassic<R, const N: usize> {
+pub struct BlinnPhongClassic<R, const N: usize, S = ExactSqrt> {
     rd: [R; N],
     rs: R,
     f0: [R; N],
     shininess: R,
+    _s: PhantomData<S>,
 }
 
 impl<R: Real, const N: usize> BlinnPhongClassic<R, N> {
@@ -101,13 +107,30 @@ impl<R: Real, const N: usize> BlinnPhongClassic<R, N> {
             rs: R::from_f64(rs),
             f0: splat_channels(f0),
             shininess: R::from_f64(s),
+            _s: PhantomData,
         })
+    }
+}
+
+impl<R: Real, const N: usize, S: SqrtFn> BlinnPhongClassic<R, N, S> {
+    /// The same model with the half vector normalized by `S2`, e.g.
+    /// [`crate::fast::NewtonSqrt`].
+    #[inline]
+    #[must_use]
+    pub fn with_sqrt<S2: SqrtFn>(self) -> BlinnPhongClassic<R, N, S2> {
+        BlinnPhongClassic {
+            rd: self.rd,
+            rs: self.rs,
+            f0: self.f0,
+            shininess: self.shininess,
+            _s: PhantomData,
+        }
     }
 
     /// `R_s F(F0, wo·wm) (wm.z)^s`, the specular part of `Out`, on safe directions.
     #[inline(always)]
     fn specular_out(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
-        let (wm, cos_d) = half_and_cos_d(wi, wo);
+        let (wm, cos_d) = half_and_cos_d::<S, R>(wi, wo);
         let lobe = self.rs * wm.z.saturate().pow(self.shininess);
         {
             let f = schlick_channels(&self.f0, cos_d);
@@ -127,20 +150,21 @@ impl<R: Real, const N: usize> BlinnPhongClassic<R, N> {
     }
 }
 
-impl<S: Scalar, const N: usize> Splat for BlinnPhongClassic<S, N> {
-    type On<L: Real> = BlinnPhongClassic<L, N>;
+impl<T: Scalar, const N: usize, S: SqrtFn> Splat for BlinnPhongClassic<T, N, S> {
+    type On<L: Real> = BlinnPhongClassic<L, N, S>;
     #[inline]
-    fn splat<L: Real>(&self) -> BlinnPhongClassic<L, N> {
+    fn splat<L: Real>(&self) -> BlinnPhongClassic<L, N, S> {
         BlinnPhongClassic {
             rd: splat_array(&self.rd),
             rs: splat_scalar(self.rs),
             f0: splat_array(&self.f0),
             shininess: splat_scalar(self.shininess),
+            _s: PhantomData,
         }
     }
 }
 
-impl<R: Real, const N: usize> Brdf<R, N> for BlinnPhongClassic<R, N> {
+impl<R: Real, const N: usize, S: SqrtFn> Brdf<R, N> for BlinnPhongClassic<R, N, S> {
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);

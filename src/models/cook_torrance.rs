@@ -4,6 +4,7 @@
 use core::marker::PhantomData;
 
 use super::{Brdf, Energy, Properties, Reciprocity, half_and_cos_d, upper};
+use crate::fast::{ExactSqrt, SqrtFn};
 use crate::fresnel::FresnelTerm;
 use crate::masking::Masking;
 use crate::ndf::Ndf;
@@ -22,8 +23,15 @@ use crate::{Real, Vec3};
 /// approximate visibility monomorphizes exactly that and pays for nothing else. The body
 /// calls `G::visibility`, which approximate terms override with their cheaper direct forms.
 ///
-/// [`crate::batch::Pipelined`] is implemented on `f32` and [`crate::real::F32Fma`]: the geometry (`cos θd`, `D·V`) and the
-/// Fresnel term run as separate passes over a block, bit-identical to `eval`.
+/// `S:` [`SqrtFn`] (default [`ExactSqrt`]; choose with [`CookTorrance::with_sqrt`]) takes
+/// the half vector's length `|wi + wo|` — hence `cos θd = |wi + wo|/2` — and its inverse,
+/// which normalizes `wm` for the NDFs that need a unit half vector (Beckmann; GGX works on
+/// the unnormalized one). The square roots inside the NDF, masking and Fresnel terms are
+/// theirs and stay exact.
+///
+/// [`crate::batch::Pipelined`] is implemented on `f32` and [`crate::real::F32Fma`]: the
+/// geometry (`cos θd`, `cos²θd`, `D·V`) and the Fresnel term run as separate passes over a
+/// block, bit-identical to `eval`.
 ///
 /// Below the horizon the result is replaced by 0 with a final select; the parts still run
 /// on those lanes (branch-free) and may compute garbage there, which never reaches a
@@ -43,18 +51,19 @@ use crate::{Real, Vec3};
 /// Surfaces", EGSR 2007; E. Heitz, "Understanding the Masking-Shadowing Function in
 /// Microfacet-Based BRDFs", JCGT 3(2), 2014.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CookTorrance<R, D, F, G> {
+pub struct CookTorrance<R, D, F, G, S = ExactSqrt> {
     /// The normal distribution `D(wm)`.
     pub ndf: D,
     /// The Fresnel term `F(wi·wm)`.
     pub fresnel: F,
     /// The masking-shadowing term `G2` (through its visibility form).
     pub masking: G,
-    _r: PhantomData<R>,
+    _r: PhantomData<(R, S)>,
 }
 
 impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>> CookTorrance<R, D, F, G> {
-    /// Composes a microfacet BRDF; each part validated its own parameters when it was built.
+    /// Composes a microfacet BRDF with the exact half-vector length; each part validated
+    /// its own parameters when it was built.
     #[inline]
     #[must_use]
     pub const fn new(ndf: D, fresnel: F, masking: G) -> Self {
@@ -67,7 +76,36 @@ impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>> CookTorrance<R, D, F, G> {
     }
 }
 
-impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>> CookTorrance<R, D, F, G> {
+impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>, S: SqrtFn> CookTorrance<R, D, F, G, S> {
+    /// The same model with the half-vector length and normalization taken by `S2`, e.g.
+    /// [`crate::fast::NewtonSqrt`].
+    ///
+    /// ```
+    /// use brdf::{Brdf, Vec3, fast::NewtonSqrt, fresnel::Schlick, masking::SmithHeightCorrelated};
+    /// use brdf::{models::CookTorrance, ndf::GgxIsotropic};
+    /// let exact = CookTorrance::new(
+    ///     GgxIsotropic::<f32>::new(0.3).unwrap(),
+    ///     Schlick::<f32, 1>::new([0.04]).unwrap(),
+    ///     SmithHeightCorrelated,
+    /// );
+    /// let fast = exact.with_sqrt::<NewtonSqrt<2>>();
+    /// let (wi, wo) = (Vec3::new(0.6, 0.0, 0.8), Vec3::new(-0.28, 0.0, 0.96));
+    /// let (a, b) = (exact.eval(wi, wo)[0], fast.eval(wi, wo)[0]);
+    /// assert!((a - b).abs() <= 1e-5 * a);
+    /// ```
+    #[inline]
+    #[must_use]
+    pub fn with_sqrt<S2: SqrtFn>(self) -> CookTorrance<R, D, F, G, S2> {
+        CookTorrance {
+            ndf: self.ndf,
+            fresnel: self.fresnel,
+            masking: self.masking,
+            _r: PhantomData,
+        }
+    }
+}
+
+impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>, S: SqrtFn> CookTorrance<R, D, F, G, S> {
     /// `(cos θd, cos²θd, D·V)` with `D·V = 0` below the horizon: everything but the Fresnel
     /// term. Shared by `eval` and the pipelined batch passes (one body).
     #[inline(always)]
@@ -76,7 +114,7 @@ impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>> CookTorrance<R, D, F, G> {
         // select replaces by 0: every operation is lane-wise, so nothing leaks.
         let m = upper(wi, wo);
         // cos θd = wi·wm = wo·wm, computed symmetrically as |wi + wo|/2.
-        let (wm, cos_d) = half_and_cos_d(wi, wo);
+        let (wm, cos_d) = half_and_cos_d::<S, R>(wi, wo);
         let h = wi + wo;
         let len2 = h.length_squared();
         // cos²θd = |wi + wo|²/4, without waiting for the square root of cos θd (the exact
@@ -91,12 +129,13 @@ impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>> CookTorrance<R, D, F, G> {
     }
 }
 
-impl<K, const N: usize, D, F, G> crate::batch::Pipelined<K, N> for CookTorrance<K, D, F, G>
+impl<K, const N: usize, D, F, G, S> crate::batch::Pipelined<K, N> for CookTorrance<K, D, F, G, S>
 where
     K: Real<Scalar = f32, Mask = bool>,
     D: Ndf<K>,
     F: FresnelTerm<K, N>,
     G: Masking<K, D>,
+    S: SqrtFn,
 {
     /// Two passes per block: the microfacet geometry (`cos θd`, `D·V`: the half vector's
     /// square root, the masking roots, one division), then the Fresnel term and the product.
@@ -139,8 +178,8 @@ where
     }
 }
 
-impl<R, D: Splat, F: Splat, G: Splat> Splat for CookTorrance<R, D, F, G> {
-    type On<L: Real> = CookTorrance<L, D::On<L>, F::On<L>, G::On<L>>;
+impl<R, D: Splat, F: Splat, G: Splat, S: SqrtFn> Splat for CookTorrance<R, D, F, G, S> {
+    type On<L: Real> = CookTorrance<L, D::On<L>, F::On<L>, G::On<L>, S>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {
         CookTorrance {
@@ -152,12 +191,13 @@ impl<R, D: Splat, F: Splat, G: Splat> Splat for CookTorrance<R, D, F, G> {
     }
 }
 
-impl<R, D, F, G, const N: usize> Brdf<R, N> for CookTorrance<R, D, F, G>
+impl<R, D, F, G, S, const N: usize> Brdf<R, N> for CookTorrance<R, D, F, G, S>
 where
     R: Real,
     D: Ndf<R>,
     F: FresnelTerm<R, N>,
     G: Masking<R, D>,
+    S: SqrtFn,
 {
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {

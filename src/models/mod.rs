@@ -180,15 +180,19 @@ pub(crate) fn unit_channels<S: crate::Scalar, const N: usize>(
 
 /// The unit half vector `wm = normalize(wi + wo)` and `cos θd = wi·wm = wo·wm`, the latter
 /// computed as `|wi + wo| / 2` — exactly symmetric in `wi` and `wo` and free of the
-/// cancellation of a dot product near `θd = π/2`. Lanes whose sum underflows to zero get the
-/// normal (and `cos θd = 0`).
+/// cancellation of a dot product near `θd = π/2`. `|h|` and `1/|h|` come from the model's
+/// [`SqrtFn`](crate::fast::SqrtFn) `S`. Lanes whose sum underflows to zero get the normal
+/// (and `cos θd = 0`).
 #[inline(always)]
-pub(crate) fn half_and_cos_d<R: Real>(wi: Vec3<R>, wo: Vec3<R>) -> (Vec3<R>, R) {
+pub(crate) fn half_and_cos_d<S: crate::fast::SqrtFn, R: Real>(
+    wi: Vec3<R>,
+    wo: Vec3<R>,
+) -> (Vec3<R>, R) {
     let h = wi.add(wo);
     let len2 = h.length_squared();
     let ok = len2.gt(R::zero());
-    let len = len2.sqrt();
-    let inv = R::select(ok, len.recip(), R::zero());
+    let (len, inv) = S::sqrt_rsqrt(len2);
+    let inv = R::select(ok, inv, R::zero());
     let n = Vec3::new(R::zero(), R::zero(), R::one());
     (
         select_vec(ok, h.scale(inv), n),
