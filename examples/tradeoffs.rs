@@ -31,7 +31,8 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use brdf::fast::{ExactPow, FastPow};
+use brdf::batch;
+use brdf::fast::{ExactPow, FastPow, NewtonSqrt};
 use brdf::fresnel::{self, Conductor, Dielectric, F82Tint, FresnelTerm, Schlick};
 use brdf::masking::{
     HammonApprox, Implicit, Kelemen, Masking, SchlickGgx, SmithHeightCorrelated, SmithSeparable,
@@ -1159,8 +1160,8 @@ fn fast_pow_models_table() -> Table {
         type P = (Vec3<f32>, Vec3<f32>);
         let cost = time_pair(
             N_TIME,
-            looper(&t32, |(a, b): P| exact32.eval(a, b)[0]),
-            looper(&t32, |(a, b): P| fast32.eval(a, b)[0]),
+            looper(&t32, |(a, b): P| Brdf::<f32, 1>::eval(&exact32, a, b)[0]),
+            looper(&t32, |(a, b): P| Brdf::<f32, 1>::eval(&fast32, a, b)[0]),
         );
         let mut r = model_error(
             &format!("normalized Blinn-Phong s = {s}, `FastPow` f32"),
@@ -1180,8 +1181,8 @@ fn fast_pow_models_table() -> Table {
         );
         r.cost = Some(time_pair(
             N_TIME,
-            looper(&t32, |(a, b): P| exact32.eval(a, b)[0]),
-            looper(&t32, |(a, b): P| exact32.eval(a, b)[0]),
+            looper(&t32, |(a, b): P| Brdf::<f32, 1>::eval(&exact32, a, b)[0]),
+            looper(&t32, |(a, b): P| Brdf::<f32, 1>::eval(&exact32, a, b)[0]),
         ));
         rows.push(r);
     }
@@ -1192,6 +1193,113 @@ fn fast_pow_models_table() -> Table {
                direction set of the models table. Worst at: the maximum relative error. \
                Cost: scalar f32 `eval` against the same model with `ExactPow` in f32 (the \
                `ExactPow` rows time it against itself)."
+            .into(),
+        rows,
+    }
+}
+
+/// The half vector through `fast::NewtonSqrt<N>` (`with_sqrt`) against `ExactSqrt`: error
+/// in f32 against the exact model in f64, cost of the scalar f32 `eval` loop and of the
+/// dispatched batch path, each against the same model with `ExactSqrt`.
+fn sqrt_models_table() -> Table {
+    let d = &model_dirs();
+    let t32 = subsample(&d.p32);
+    let cols: [Vec<f32>; 6] = core::array::from_fn(|c| {
+        t32.iter()
+            .map(|(a, b)| [a.x, a.y, a.z, b.x, b.y, b.z][c])
+            .collect()
+    });
+    let (wi, wo) = (
+        batch::Directions::new(&cols[0], &cols[1], &cols[2]),
+        batch::Directions::new(&cols[3], &cols[4], &cols[5]),
+    );
+    let isa = batch::Isa::detect();
+    let mut rows = Vec::new();
+    type P = (Vec3<f32>, Vec3<f32>);
+    // One model: its exact and Newton forms at f32, the exact one at f64.
+    macro_rules! rows_for {
+        ($label:expr, $exact32:expr, $exact64:expr, [$($n:literal),*]) => {{
+            let exact32 = $exact32;
+            let exact64 = $exact64;
+            let r = model_error(&format!("{}, `ExactSqrt` f32", $label), "`ExactSqrt` f64", &exact32, &exact64, d);
+            rows.push(r);
+            $({
+                let fast32 = exact32.with_sqrt::<NewtonSqrt<$n>>();
+                let mut r = model_error(
+                    &format!("{}, `NewtonSqrt<{}>` f32", $label, $n),
+                    "`ExactSqrt` f64",
+                    &fast32,
+                    &exact64,
+                    d,
+                );
+                r.cost = Some(time_pair(
+                    N_TIME,
+                    looper(&t32, |(a, b): P| Brdf::<f32, 1>::eval(&exact32, a, b)[0]),
+                    looper(&t32, |(a, b): P| Brdf::<f32, 1>::eval(&fast32, a, b)[0]),
+                ));
+                rows.push(r);
+                let (mut oa, mut ob) = (vec![0.0f32; N_TIME], vec![0.0f32; N_TIME]);
+                let cost = time_pair(
+                    N_TIME,
+                    || batch::eval_with(isa, black_box(&exact32), wi, wo, [&mut oa]).unwrap(),
+                    || batch::eval_with(isa, black_box(&fast32), wi, wo, [&mut ob]).unwrap(),
+                );
+                rows.push(Row {
+                    name: format!("{}, `NewtonSqrt<{}>`, batch ({isa:?})", $label, $n),
+                    reference: "same, `ExactSqrt` batch".into(),
+                    domain: "cost only (error: the row above)".into(),
+                    abs: 0.0,
+                    rel: None,
+                    at: "—".into(),
+                    cost: Some(cost),
+                    non_finite: 0,
+                });
+            })*
+        }};
+    }
+    rows_for!(
+        "Cook-Torrance GGX α = 0.3, Schlick, correlated Smith",
+        CookTorrance::new(
+            GgxIsotropic::<f32>::new(0.3).unwrap(),
+            Schlick::<f32, 1>::new([0.04]).unwrap(),
+            SmithHeightCorrelated,
+        ),
+        CookTorrance::new(
+            GgxIsotropic::<f64>::new(0.3).unwrap(),
+            Schlick::<f64, 1>::new([0.04]).unwrap(),
+            SmithHeightCorrelated,
+        ),
+        [1, 2, 3]
+    );
+    rows_for!(
+        "Cook-Torrance Beckmann α = 0.3, dielectric η = 1.5, separable Smith",
+        CookTorrance::new(
+            Beckmann::<f32>::new(0.3).unwrap(),
+            Dielectric::<f32>::new(1.5).unwrap(),
+            SmithSeparable,
+        ),
+        CookTorrance::new(
+            Beckmann::<f64>::new(0.3).unwrap(),
+            Dielectric::<f64>::new(1.5).unwrap(),
+            SmithSeparable,
+        ),
+        [2, 3]
+    );
+    for s in [16.0, 256.0, 1e4] {
+        rows_for!(
+            format!("engine Blinn-Phong s = {s}"),
+            BlinnPhongClassic::<f32, 1>::new([0.2], 1.0, [0.04], s as f32).unwrap(),
+            BlinnPhongClassic::<f64, 1>::new([0.2], 1.0, [0.04], s).unwrap(),
+            [2, 3]
+        );
+    }
+    Table {
+        title: "Fast half-vector normalization inside a model: `with_sqrt::<NewtonSqrt<N>>`",
+        note: "`|wi + wo|` and `1/|wi + wo|` by `fast::rsqrt::<N>` (bit-trick start, N Newton \
+               steps) instead of a square root and a division, in f32, against the exact \
+               model in f64 on the direction set of the models table. Worst at: the maximum \
+               relative error. Cost: the scalar f32 `eval` loop, and `batch::eval_with` on the \
+               dispatched instruction set, each against the same model with `ExactSqrt`."
             .into(),
         rows,
     }
@@ -1492,6 +1600,7 @@ fn main() {
         normalization_table(),
         masking_table(),
         fast_pow_models_table(),
+        sqrt_models_table(),
         models_table(),
     ];
     let mut bad = 0;

@@ -598,10 +598,11 @@ fn an_exhausted_budget_is_reported_in_the_error_estimate() {
     let e = directional_albedo_estimate(&lobe, dir(1e-2, 0.0), &cfg);
     // The whole domain is still covered (every initial panel is integrated once)...
     assert!(e.value[0] > 0.5, "{e:?}");
-    // ...but the estimate says the tolerance was not met, and the budget held: at most 8
-    // initial θ panels (the first refinement replaces one by two), 4 φ panels each.
+    // ...but the estimate says the tolerance was not met, and the budget held: at most 16
+    // initial θ panels (17 candidate edges), none refined since the budget is below that
+    // count, and 4 φ panels each.
     assert!(e.error > cfg.tolerance, "{e:?}");
-    assert!(e.evaluations <= 9 * 15 * 4 * 15, "{e:?}");
+    assert!(e.evaluations <= 16 * 15 * 4 * 15, "{e:?}");
 }
 
 #[test]
@@ -869,4 +870,56 @@ proptest! {
         let expected = if wo.z > 0.0 { 1.0 } else { 0.0 };
         prop_assert!((r - expected).abs() < 1e-4, "{} at {:?}, n {}", r, wo, n);
     }
+}
+
+/// Both configurations meet their tolerance on normalized cosine lobes about the normal, the
+/// mirror and the retro direction, for exponents from 1 to 10⁴ (a low-discrepancy scan) and
+/// viewing angles from normal to `cos θo = 10⁻⁹`: the regime where a wide GK15 panel can have
+/// G7 and K15 agree by accident on an unresolved lobe. With the raw `|K15 − G7|` estimate and
+/// no graded edges about `θo/2` and `θo`, `FAST` missed by up to 3.5e-3 here (and by 1.2e-4
+/// at the proptest case kept below), `DEFAULT` by 2e-6; either fix alone left one of them
+/// over its tolerance somewhere.
+#[test]
+fn albedo_meets_tolerance_on_a_scan_of_cosine_lobes() {
+    use brdf::analysis::directional_albedo_estimate;
+    for cfg in [AlbedoConfig::FAST, AlbedoConfig::DEFAULT] {
+        let (mut worst, mut at) = (0.0f64, (0.0, 0.0, 0));
+        let (mut lo, mut hi) = (u64::MAX, 0);
+        for k in 0..60 {
+            let n = 10f64.powf(4.0 * (k as f64 * 0.618_034).fract());
+            for z in [1e-9f64, 1e-7, 1e-5, 1e-3, 0.1, 0.5, 0.9] {
+                let wo = Vec3::new((1.0 - z * z).sqrt(), 0.0, z);
+                for (ai, axis) in [Axis::Normal, Axis::Mirror, Axis::Retro]
+                    .into_iter()
+                    .enumerate()
+                {
+                    let m = CosineLobe { n, axis };
+                    let e = directional_albedo_estimate(&m, wo, &cfg);
+                    let exact = if ai == 0 {
+                        1.0
+                    } else {
+                        cosine_lobe_reference(n, m.axis(wo))
+                    };
+                    let d = (e.value[0] - exact).abs();
+                    (lo, hi) = (lo.min(e.evaluations), hi.max(e.evaluations));
+                    if d > worst {
+                        (worst, at) = (d, (n, z, ai));
+                    }
+                }
+            }
+        }
+        println!(
+            "tolerance {:e}: worst {worst:.3e} at (n, cos θo, axis) = {at:?}; {lo}–{hi} evaluations",
+            cfg.tolerance
+        );
+        assert!(worst <= cfg.tolerance, "{worst:e} at {at:?}");
+    }
+    // The case proptest found: n = 741.15 about the normal, cos θo = 1.84e-9.
+    let wo = Vec3::new(1.0, 0.0, 1.837_741_482_627_381_3e-9);
+    let lobe = CosineLobe {
+        n: 741.149_611_193_264_3,
+        axis: Axis::Normal,
+    };
+    let [r] = directional_albedo(&lobe, wo, &AlbedoConfig::FAST);
+    assert!((r - 1.0).abs() <= AlbedoConfig::FAST.tolerance, "{r}");
 }

@@ -28,30 +28,31 @@
 //!
 //! | Case | `cos θo` | Worst error |
 //! |---|---|---|
-//! | Lambert | 1 … 1e-7 | 1.5e-9 |
-//! | Normalized cosine lobe about `n`, `(n+2)/(2π) cosⁿθi`, n ≤ 10⁴ | 1 … 1e-4 | 5e-8 |
-//! | Phong lobes about the mirror and retro directions, n ≤ 10⁴ (independent 1D reference) | 1 … 1e-4 | 1.1e-6 (kink of `max(0, R·wi)` at n = 1) |
-//! | The same lobe about a fixed direction off the plane of incidence, n ≤ 10³ | 1 … 1e-4 | 3.4e-9 |
-//! | Blinn-Phong `(n·h)ˢ`, s ≤ 10⁴ (closed form) | 1 | 5e-13 |
-//! | GGX / Beckmann `D/(4 cos θi cos θo)`, α ≥ 10⁻³ (closed form) | 1 | 2.1e-11 |
-//! | The same, α ∈ {10⁻³, 10⁻², 0.3} (independent 1D reference; error relative to `max(1, ρ)`, as `ρ` reaches 10³ at grazing with G = 1) | 1 … 1e-4 | 1.5e-7 |
-//! | A jump discontinuity (`f = 2/π` on `wi.x > 0`) | 1 … 1e-4 | 3.3e-4 |
-//! | The jump with [`AlbedoConfig::THOROUGH`] | 0.6 … 1e-4 | 1.3e-6 |
-//! | Ring (Kajiya-Kay-like cone) lobes 0.01 and 0.003 rad wide, with `THOROUGH` | 1 … 1e-3 | 2.5e-9 |
+//! | Lambert | 1 … 1e-7 | 4.3e-10 |
+//! | Normalized cosine lobe about `n`, `(n+2)/(2π) cosⁿθi`, n ≤ 10⁴ | 1 … 1e-4 | 5.8e-10 |
+//! | Cosine lobes about `n`, mirror and retro, n ∈ [1, 10⁴] (scan), `FAST` / `DEFAULT` | 0.9 … 1e-9 | 3.3e-6 / 6.5e-8 |
+//! | Phong lobes about the mirror and retro directions, n ≤ 10⁴ (independent 1D reference) | 1 … 1e-4 | 1.0e-7 (kink of `max(0, R·wi)` at n = 1) |
+//! | The same lobe about a fixed direction off the plane of incidence, n ≤ 10³ | 1 … 1e-4 | 1.2e-10 |
+//! | Blinn-Phong `(n·h)ˢ`, s ≤ 10⁴ (closed form) | 1 | 2.1e-13 |
+//! | GGX / Beckmann `D/(4 cos θi cos θo)`, α ≥ 10⁻³ (closed form) | 1 | 1.6e-11 |
+//! | The same, α ∈ {10⁻³, 10⁻², 0.3} (independent 1D reference; error relative to `max(1, ρ)`, as `ρ` reaches 10³ at grazing with G = 1) | 1 … 1e-4 | 8.6e-10 |
+//! | A jump discontinuity (`f = 2/π` on `wi.x > 0`) | 1 … 1e-4 | 2.4e-5 |
+//! | The jump with [`AlbedoConfig::THOROUGH`] | 0.6 … 1e-4 | 7.3e-8 |
+//! | Ring (Kajiya-Kay-like cone) lobes 0.01 and 0.003 rad wide, with `THOROUGH` | 1 … 1e-3 | 6.1e-10 |
 //!
 //! So continuous lobes meet 1e-4 with two orders of margin under `DEFAULT` when they are
 //! centred on the mirror direction, the normal or the retro-reflection direction (at any
 //! sharpness), or are wider than about 0.03 rad wherever they are. Thin features elsewhere —
 //! cone (ridge) lobes narrower than 0.03 rad, jump discontinuities — can fall between the
-//! initial nodes of `DEFAULT` (a 0.01-rad ring was off by 10 %, a jump by 3.3e-4); use
+//! initial nodes of `DEFAULT` (a 0.01-rad ring was off by 10 %, a jump by 2.4e-5); use
 //! [`AlbedoConfig::THOROUGH`] (denser initial panels, ≈ 2.5·10⁵–6·10⁵ evaluations) for
 //! them. No deterministic black-box rule can see a lobe narrower than its node spacing.
 //!
-//! Cost (release build, a cheap analytic BRDF): 4.5·10³–6·10⁴ evaluations, 0.1–4.5 ms per
-//! albedo with `DEFAULT`; 4.5·10³–4.6·10⁴ evaluations with [`AlbedoConfig::FAST`]
-//! (tolerance 1e-4; measured error ≤ 2e-6 in the timing runs: Lambert, GGX with α = 0.3 and
-//! 10⁻³, a `cos¹⁰⁰⁰⁰` lobe, `cos θo` from 1 to 1e-4); [`hemispherical_albedo`] of
-//! an isotropic BRDF ≈ 1.3·10⁵ evaluations (3 ms).
+//! Cost (release build, a cheap analytic BRDF): 4.5·10³–1.2·10⁵ evaluations, 0.2–5 ms per
+//! albedo with `DEFAULT`; 4.5·10³–6.6·10⁴ evaluations with [`AlbedoConfig::FAST`]
+//! (tolerance 1e-4; measured error ≤ 3.3e-6 over the cosine-lobe scan above, 4.7e-5 on GGX
+//! with α = 10⁻³ at `cos θo = 10⁻⁴`); [`hemispherical_albedo`] of Lambert ≈ 1.9·10⁶
+//! evaluations (60 ms).
 //!
 //! ## References
 //!
