@@ -4,13 +4,18 @@
 //! Workloads (issue targets in parentheses):
 //! * `ggx_schlick`: GGX Cook-Torrance, Schlick F, height-correlated Smith, one channel
 //!   (≥ 1.0 G evaluations/s), plus a plain hand-written f32 version of the same formula to
-//!   check that the generic scalar path costs nothing (ratio ≥ 0.95);
+//!   check that the generic scalar path (`scalar_f32`) costs nothing (ratio ≥ 0.95);
 //! * `rough_conductor`: Mitsuba 3's `roughconductor` workload — isotropic GGX, separable
 //!   Smith G1·G1, exact conductor Fresnel with a complex IOR per RGB channel, times cos θo
 //!   (≥ 450 M evaluations/s);
 //! * `normalized_blinn_phong`: the seed's normalized Blinn-Phong, diffuse + specular, one
 //!   channel, with the exact `powf` and with `fast::pow_phong` (|relative error| ≤ 1e-5)
 //!   (≥ 0.7 G evaluations/s).
+//!
+//! Every workload runs as `scalar_f32` (one `eval` per pair in a plain loop), on each wide
+//! lane width (`f32x4`, `f32x8`, `f32x16`: the model's `Splat`; on a default build these are
+//! SSE2 registers), and through `batch::eval_with` / `eval_pipelined_with` on every
+//! instruction set this CPU has (`batch/<Isa>`, `batch_pipelined/<Isa>`).
 use std::hint::black_box;
 
 use brdf::batch::{self, Directions, Isa, Pipelined};
@@ -88,34 +93,75 @@ fn ggx_by_hand_branchless(wi: [f32; 3], wo: [f32; 3], alpha: f32, f0: f32) -> f3
     if wi[2] > 0.0 && wo[2] > 0.0 { r } else { 0.0 }
 }
 
-/// Evaluates a lane-typed model over the SoA arrays, `L::LANES` pairs at a time.
+/// Evaluates a lane-typed model over the SoA arrays, `L::LANES` pairs at a time, writing
+/// every channel.
 fn lanes<L: Real<Scalar = f32>, B: Brdf<L, C>, const C: usize>(
     b: &B,
     wi: &[Vec<f32>; 3],
     wo: &[Vec<f32>; 3],
-    out: &mut [f32],
+    out: &mut [Vec<f32>; C],
 ) {
     let w = L::LANES;
-    for (k, o) in out.chunks_exact_mut(w).enumerate() {
+    for k in 0..N / w {
         let at = |v: &Vec<f32>| L::from_fn(|l| v[k * w + l]);
         let f = b.eval(
             Vec3::new(at(&wi[0]), at(&wi[1]), at(&wi[2])),
             Vec3::new(at(&wo[0]), at(&wo[1]), at(&wo[2])),
         );
-        for (l, o) in o.iter_mut().enumerate() {
-            *o = f[0].lane(l);
+        for c in 0..C {
+            for l in 0..w {
+                out[c][k * w + l] = f[c].lane(l);
+            }
         }
     }
 }
 
-macro_rules! ggx_schlick {
-    ($r:ty) => {
-        CookTorrance::new(
-            GgxIsotropic::<$r>::new(0.3).unwrap(),
-            Schlick::<$r, 1>::new([0.04]).unwrap(),
-            SmithHeightCorrelated,
-        )
-    };
+/// The scalar `f32` path: one `eval` per pair in a plain loop (what a renderer's shading loop
+/// does), every channel written.
+fn scalar<B: Brdf<f32, C>, const C: usize>(
+    b: &B,
+    wi: &[Vec<f32>; 3],
+    wo: &[Vec<f32>; 3],
+    out: &mut [Vec<f32>; C],
+) {
+    let (ix, iy, iz) = (&wi[0][..N], &wi[1][..N], &wi[2][..N]);
+    let (ox, oy, oz) = (&wo[0][..N], &wo[1][..N], &wo[2][..N]);
+    for i in 0..N {
+        let f = b.eval(
+            Vec3::new(ix[i], iy[i], iz[i]),
+            Vec3::new(ox[i], oy[i], oz[i]),
+        );
+        for c in 0..C {
+            out[c][i] = f[c];
+        }
+    }
+}
+
+/// Benchmarks `model` (built on `f32`) as the scalar loop and on each wide lane width (its
+/// `Splat` to `f32x4`, `f32x8`, `f32x16`), as `scalar_f32`, `f32x4`, ….
+fn bench_scalar_and_lanes<B, const C: usize>(
+    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    model: &B,
+    wi: &[Vec<f32>; 3],
+    wo: &[Vec<f32>; 3],
+    out: &mut [Vec<f32>; C],
+) where
+    B: Brdf<f32, C> + Splat,
+    B::On<f32x4>: Brdf<f32x4, C>,
+    B::On<f32x8>: Brdf<f32x8, C>,
+    B::On<f32x16>: Brdf<f32x16, C>,
+{
+    g.bench_function("scalar_f32", |b| {
+        b.iter(|| scalar(black_box(model), wi, wo, out))
+    });
+    let (m4, m8, m16) = (
+        model.splat::<f32x4>(),
+        model.splat::<f32x8>(),
+        model.splat::<f32x16>(),
+    );
+    g.bench_function("f32x4", |b| b.iter(|| lanes(black_box(&m4), wi, wo, out)));
+    g.bench_function("f32x8", |b| b.iter(|| lanes(black_box(&m8), wi, wo, out)));
+    g.bench_function("f32x16", |b| b.iter(|| lanes(black_box(&m16), wi, wo, out)));
 }
 
 /// One batch entry point: `batch::eval_with` or `batch::eval_pipelined_with`.
@@ -181,10 +227,15 @@ fn bench_ggx_schlick(c: &mut Criterion) {
     let mut out = vec![0.0f32; N];
     let mut g = c.benchmark_group("batch/ggx_schlick");
     g.throughput(Throughput::Elements(N as u64));
-    // The same loop shape for both (re-sliced, so no bounds checks): the only difference is
-    // the body, hand-written f32 against the crate's generic one. LLVM treats both alike
-    // (here: SSE2-vectorized on the default target), so the ratio is the cost of genericity.
-    let ct = ggx_schlick!(f32);
+    // The same loop shape for the hand-written bodies and the crate's generic one
+    // (`scalar_f32` below; re-sliced, so no bounds checks): the only difference is the body.
+    // LLVM treats both alike (here: SSE2-vectorized on the default target), so the ratio is
+    // the cost of genericity.
+    let ct = CookTorrance::new(
+        GgxIsotropic::<f32>::new(0.3).unwrap(),
+        Schlick::<f32, 1>::new([0.04]).unwrap(),
+        SmithHeightCorrelated,
+    );
     // Each function item is its own type, so the loop is monomorphized and inlined for it.
     bench_by_hand(&mut g, "hand_written_f32", &wi, &wo, &mut out, ggx_by_hand);
     bench_by_hand(
@@ -195,42 +246,8 @@ fn bench_ggx_schlick(c: &mut Criterion) {
         &mut out,
         ggx_by_hand_branchless,
     );
-    g.bench_function("generic_f32", |b| {
-        b.iter(|| {
-            let ct = black_box(ct);
-            let o = &mut out[..N];
-            let (ix, iy, iz, ox, oy, oz) = (
-                &wi[0][..N],
-                &wi[1][..N],
-                &wi[2][..N],
-                &wo[0][..N],
-                &wo[1][..N],
-                &wo[2][..N],
-            );
-            for i in 0..N {
-                o[i] = ct.eval(
-                    Vec3::new(ix[i], iy[i], iz[i]),
-                    Vec3::new(ox[i], oy[i], oz[i]),
-                )[0];
-            }
-            black_box(&out);
-        })
-    });
-    let (c4, c8, c16) = (
-        ggx_schlick!(f32x4),
-        ggx_schlick!(f32x8),
-        ggx_schlick!(f32x16),
-    );
-    g.bench_function("f32x4", |b| {
-        b.iter(|| lanes(black_box(&c4), &wi, &wo, &mut out))
-    });
-    g.bench_function("f32x8", |b| {
-        b.iter(|| lanes(black_box(&c8), &wi, &wo, &mut out))
-    });
-    g.bench_function("f32x16", |b| {
-        b.iter(|| lanes(black_box(&c16), &wi, &wo, &mut out))
-    });
     let mut out1 = [out];
+    bench_scalar_and_lanes(&mut g, &ct, &wi, &wo, &mut out1);
     bench_isas(&mut g, "batch", batch::eval_with, &ct, &wi, &wo, &mut out1);
     let piped = batch::eval_pipelined_with;
     bench_isas(&mut g, "batch_pipelined", piped, &ct, &wi, &wo, &mut out1);
@@ -292,6 +309,7 @@ fn bench_rough_conductor(c: &mut Criterion) {
     ));
     let mut g = c.benchmark_group("batch/rough_conductor");
     g.throughput(Throughput::Elements(N as u64));
+    bench_scalar_and_lanes(&mut g, &m, &wi, &wo, &mut out);
     bench_isas(&mut g, "batch", batch::eval_with, &m, &wi, &wo, &mut out);
     let piped = batch::eval_pipelined_with;
     bench_isas(&mut g, "batch_pipelined", piped, &m, &wi, &wo, &mut out);
@@ -323,6 +341,7 @@ fn bench_normalized_blinn_phong(c: &mut Criterion) {
     let mut g = c.benchmark_group("batch/normalized_blinn_phong");
     g.throughput(Throughput::Elements(N as u64));
     let mut out = [out];
+    bench_scalar_and_lanes(&mut g, &fast, &wi, &wo, &mut out);
     bench_isas(
         &mut g,
         "exact_pow",
