@@ -222,6 +222,36 @@ fn bench_by_hand(
     });
 }
 
+/// The memory ceiling of a batch: read the six direction components of every pair and write
+/// `C` outputs (their sum), in a loop LLVM vectorizes with the build's baseline — the traffic
+/// of a batch evaluation with no arithmetic. 64K pairs are 1.5 MiB of input, more than one
+/// core's L2 on some machines (1 MiB on Zen 4/5), so this can be an L3 bound.
+fn bench_memory_ceiling(c: &mut Criterion) {
+    let (wi, wo) = (directions(1), directions(7));
+    let mut g = c.benchmark_group("batch/memory_ceiling");
+    g.throughput(Throughput::Elements(N as u64));
+    fn run<const C: usize>(wi: &[Vec<f32>; 3], wo: &[Vec<f32>; 3], out: &mut [Vec<f32>; C]) {
+        let (ix, iy, iz) = (&wi[0][..N], &wi[1][..N], &wi[2][..N]);
+        let (ox, oy, oz) = (&wo[0][..N], &wo[1][..N], &wo[2][..N]);
+        let mut out = out.each_mut().map(|o| &mut o[..N]);
+        for i in 0..N {
+            let s = ix[i] + iy[i] + iz[i] + ox[i] + oy[i] + oz[i];
+            for (c, o) in out.iter_mut().enumerate() {
+                o[i] = s + c as f32;
+            }
+        }
+    }
+    let mut out1 = [vec![0.0f32; N]];
+    g.bench_function("read6_write1", |b| {
+        b.iter(|| run(black_box(&wi), &wo, &mut out1))
+    });
+    let mut out3 = [vec![0.0f32; N], vec![0.0f32; N], vec![0.0f32; N]];
+    g.bench_function("read6_write3", |b| {
+        b.iter(|| run(black_box(&wi), &wo, &mut out3))
+    });
+    g.finish();
+}
+
 fn bench_ggx_schlick(c: &mut Criterion) {
     let (wi, wo) = (directions(1), directions(7));
     let mut out = vec![0.0f32; N];
@@ -375,6 +405,7 @@ fn bench_normalized_blinn_phong(c: &mut Criterion) {
 
 criterion_group!(
     benches,
+    bench_memory_ceiling,
     bench_ggx_schlick,
     bench_rough_conductor,
     bench_normalized_blinn_phong
