@@ -282,6 +282,34 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(common::config(256))]
+
+    /// The seed's coupled diffuse in f32 against its published formula
+    /// `R_d/π (1 − R_s F(F0, cos θi))` evaluated in f64: within 1e-6 relative down to
+    /// `cos θi = 1e-7`, where `1 − R_s F` cancels (R_s = 1) and a direct f32 evaluation was
+    /// off by 10 %.
+    #[test]
+    fn coupled_lambert_f32_is_accurate_at_grazing(ci in common::cos_theta(), rd in 0.0f64..1.0, rs in 0.0f64..=1.0, f0 in 0.0f64..1.0, pick_one in proptest::bool::ANY) {
+        let rs = if pick_one { 1.0 } else { rs };
+        let (rd, rs, f0) = (rd as f32, rs as f32, f0 as f32);
+        let m = CoupledLambert::<f32, 1>::new([rd], rs, [f0]).unwrap();
+        let wi = common::hemisphere(ci, 0.3);
+        let wo = V::new(0.0, 0.0, 1.0);
+        let (wi32, wo32) = (common::to_f32(wi), common::to_f32(wo));
+        let c = f64::from(wi32.z);
+        let (rd, rs, f0) = (f64::from(rd), f64::from(rs), f64::from(f0));
+        let fresnel = f0 + (1.0 - f0) * (1.0 - c).powi(5);
+        let expect = rd / PI * (1.0 - rs * fresnel);
+        let got = f64::from(m.eval(wi32, wo32)[0]);
+        if c > 0.0 {
+            prop_assert!((got - expect).abs() <= 1e-6 * expect + 1e-38, "{got} vs {expect} at cos θi = {c}");
+        } else {
+            prop_assert_eq!(got, 0.0);
+        }
+    }
+}
+
 #[test]
 fn shirley_diffuse_value_and_seed_discrepancy() {
     // The paper's form (1 − R0) in the numerator, at normal incidence and view.

@@ -209,6 +209,73 @@ fn every_model_round_trips_through_toml_and_json() {
     }
 }
 
+/// Every model and option as a `Material<f32>`, splatted: on `f32x8` every lane equals the
+/// `f32` material (the same formulas on correctly rounded arithmetic, transcendentals within
+/// 32 ULP), and the batch path (which runs the `F32Fma` form on FMA hardware) stays within
+/// 1e-5 relative of it — the dispatching enum and its `Splat` keep every part.
+#[test]
+fn every_model_splats_and_batches() {
+    use brdf::batch::{self, Directions};
+    use brdf::real::Splat;
+    use brdf::{Real, f32x8};
+    let cos: [f32; 8] = [1.0, 0.9, 0.5, 0.3, 0.1, 1e-3, 1e-7, 0.0];
+    let mut d: [Vec<f32>; 6] = Default::default();
+    for (k, &ci) in cos.iter().enumerate() {
+        for &co in &cos {
+            let phi = 0.4 * k as f32;
+            let (si, so) = ((1.0 - ci * ci).sqrt(), (1.0 - co * co).sqrt());
+            for (v, x) in d
+                .iter_mut()
+                .zip([si, 0.0, ci, so * phi.cos(), so * phi.sin(), co])
+            {
+                v.push(x);
+            }
+        }
+    }
+    let n = d[0].len();
+    for desc in every_model() {
+        let m: Material<f32> = desc.build().expect("valid in f32");
+        let m8 = m.splat::<f32x8>();
+        let at = |i: usize| {
+            (
+                Vec3::new(d[0][i], d[1][i], d[2][i]),
+                Vec3::new(d[3][i], d[4][i], d[5][i]),
+            )
+        };
+        let mut out = [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]];
+        let [r, g, b] = &mut out;
+        batch::eval(
+            &m,
+            Directions::new(&d[0], &d[1], &d[2]),
+            Directions::new(&d[3], &d[4], &d[5]),
+            [r, g, b],
+        );
+        for start in (0..n).step_by(8) {
+            let lane = |c: usize| f32x8::from_fn(|l| d[c][start + l]);
+            let v = m8.eval(
+                Vec3::new(lane(0), lane(1), lane(2)),
+                Vec3::new(lane(3), lane(4), lane(5)),
+            );
+            for l in 0..8 {
+                let (wi, wo) = at(start + l);
+                let f = m.eval(wi, wo);
+                for c in 0..3 {
+                    let (x, y) = (v[c].lane(l), f[c]);
+                    assert!(
+                        common::ulps(x, y) <= 32 || (x - y).abs() <= 1e-30,
+                        "{desc:?} f32x8 channel {c}: {x} vs {y} at {wi:?} {wo:?}"
+                    );
+                    let z = out[c][start + l];
+                    assert!(
+                        (z - y).abs() <= 1e-5 * y.abs() + 1e-30,
+                        "{desc:?} batch channel {c}: {z} vs {y} at {wi:?} {wo:?}"
+                    );
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn model_key_may_come_anywhere() {
     let a: MaterialDesc = toml::from_str("albedo = 0.5\nmodel = \"lambert\"").unwrap();

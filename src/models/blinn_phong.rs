@@ -397,12 +397,23 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
 /// `wi` only, so it is **not reciprocal** (the talk says so); its albedo is
 /// `R_d (1 − R_s F(F0, cos θi)) ≤ R_d ≤ 1`. Domain: `R_d, R_s, F0 ∈ [0, 1]`.
 ///
+/// Evaluated without cancellation as a sum of two non-negative terms,
+///
+/// ```text
+/// 1 − R_s F(F0, c) = (1 − R_s) + R_s (1 − F0) (1 − (1 − c)⁵)
+/// ```
+///
+/// with both coefficients per material and the last factor by
+/// [`crate::fresnel::schlick_complement`]: at grazing light `1 − F → 0`, and `1 − R_s F`
+/// computed directly loses every digit in `f32` (10 % at `cos θi = 10⁻⁷`).
+///
 /// Reference: Y. Gotanda, "Basic of Reflectance", tri-Ace, Imagine Day 2009.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CoupledLambert<R, const N: usize> {
-    rd_over_pi: [R; N],
-    rs: R,
-    f0: [R; N],
+    /// `R_d (1 − R_s)/π` per channel.
+    base: [R; N],
+    /// `R_d R_s (1 − F0)/π` per channel.
+    weight: [R; N],
 }
 
 impl<R: Real, const N: usize> CoupledLambert<R, N> {
@@ -415,10 +426,10 @@ impl<R: Real, const N: usize> CoupledLambert<R, N> {
         let rd = unit_channels("rd", rd)?;
         let rs: f64 = crate::error::unit_interval("rs", rs)?.into();
         let f0 = unit_channels("f0", f0)?;
+        let rd_over_pi = rd.map(|r| r * core::f64::consts::FRAC_1_PI);
         Ok(Self {
-            rd_over_pi: splat_channels(rd.map(|r| r * core::f64::consts::FRAC_1_PI)),
-            rs: R::from_f64(rs),
-            f0: splat_channels(f0),
+            base: splat_channels(rd_over_pi.map(|r| r * (1.0 - rs))),
+            weight: splat_channels(core::array::from_fn(|c| rd_over_pi[c] * rs * (1.0 - f0[c]))),
         })
     }
 }
@@ -428,9 +439,8 @@ impl<S: Scalar, const N: usize> Splat for CoupledLambert<S, N> {
     #[inline]
     fn splat<L: Real>(&self) -> CoupledLambert<L, N> {
         CoupledLambert {
-            rd_over_pi: splat_array(&self.rd_over_pi),
-            rs: splat_scalar(self.rs),
-            f0: splat_array(&self.f0),
+            base: splat_array(&self.base),
+            weight: splat_array(&self.weight),
         }
     }
 }
@@ -439,9 +449,8 @@ impl<R: Real, const N: usize> Brdf<R, N> for CoupledLambert<R, N> {
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let m = upper(wi, wo);
-        let f = schlick_channels(&self.f0, wi.z);
-        let r: [R; N] =
-            crate::real::channels(|c| self.rd_over_pi[c] * (-self.rs).mul_add(f[c], R::one()));
+        let t = crate::fresnel::schlick_complement(wi.z);
+        let r: [R; N] = crate::real::channels(|c| self.weight[c].mul_add(t, self.base[c]));
         masked(m, r)
     }
 
