@@ -315,11 +315,6 @@ pub fn eval_with<B: BatchBrdf<N>, const N: usize>(
     wo: Directions<'_>,
     out: [&mut [f32]; N],
 ) -> Result<(), Unavailable> {
-    if isa == Isa::Portable {
-        // No F32Fma form needed (nor built) for the baseline loop.
-        let p = PerPair::<f32, B>(brdf, PhantomData);
-        return dispatch(isa, &p, &p, wi, wo, out);
-    }
     let fused = brdf.fused();
     dispatch(
         isa,
@@ -437,10 +432,6 @@ where
     B: BatchBrdf<N> + Pipelined<f32, N>,
     B::Fused: Pipelined<F32Fma, N>,
 {
-    if isa == Isa::Portable {
-        let p = Passes::<f32, B>(brdf, PhantomData);
-        return dispatch(isa, &p, &p, wi, wo, out);
-    }
     let fused = brdf.fused();
     dispatch(
         isa,
@@ -512,8 +503,12 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
         "eval_glam: lengths differ"
     );
     let isa = Isa::detect();
-    // The F32Fma form once per call, not per chunk (only the FMA loops use it).
-    let fused = (isa != Isa::Portable).then(|| brdf.fused());
+    // The F32Fma form once per call, not per chunk.
+    let fused = brdf.fused();
+    let (portable, fused) = (
+        PerPair::<f32, B>(brdf, PhantomData),
+        PerPair::<F32Fma, B::Fused>(&fused, PhantomData),
+    );
     let mut soa = [[0.0f32; CHUNK]; 6];
     let mut res = [[0.0f32; CHUNK]; N];
     for ((wi, wo), out) in wi
@@ -534,15 +529,8 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
         let dirs_i = Directions::new(&ix[..n], &iy[..n], &iz[..n]);
         let dirs_o = Directions::new(&ox[..n], &oy[..n], &oz[..n]);
         let slices = res.each_mut().map(|c| &mut c[..n]);
-        let portable = PerPair::<f32, B>(brdf, PhantomData);
         // The detected variant is available by construction.
-        let _ = match &fused {
-            None => dispatch(isa, &portable, &portable, dirs_i, dirs_o, slices),
-            Some(f) => {
-                let f = PerPair::<F32Fma, B::Fused>(f, PhantomData);
-                dispatch(isa, &portable, &f, dirs_i, dirs_o, slices)
-            }
-        };
+        let _ = dispatch(isa, &portable, &fused, dirs_i, dirs_o, slices);
         for (i, o) in out.iter_mut().enumerate() {
             *o = core::array::from_fn(|c| res[c][i]);
         }
