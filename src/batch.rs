@@ -12,8 +12,9 @@
 //! The portable loop evaluates the model as it was built, on `f32`. The two FMA loops evaluate
 //! it on [`F32Fma`] ([`BatchBrdf::fused`], through [`Splat`]), whose `mul_add` is one fused
 //! instruction there: on a default-target build `f32`'s `mul_add` cannot fuse (its choice is
-//! fixed when the crate is compiled), and fusing roughly halves the floating-point work of a
-//! BRDF body (measured: 1.5–2.6× faster, see the README). So:
+//! fixed when the crate is compiled), and fusing merges most multiplies into adds and
+//! shortens the dependency chains of a BRDF body (measured on AVX-512: 1.4–2.3× faster, see
+//! the README). So:
 //!
 //! * [`Isa::Portable`] results equal [`Brdf::eval`] on the `f32` model bit for bit;
 //! * [`Isa::Avx2Fma`] and [`Isa::Avx512`] results equal `eval` on the [`F32Fma`] model

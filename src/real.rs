@@ -14,7 +14,11 @@
 //!   the scalar of the same precision — except for [`Real::mul_add`], below.
 //! * [`Real::mul_add`] fuses (one rounding) when the build enables hardware FMA
 //!   (`target_feature = "fma"`) and is `a·b + c` (two roundings) otherwise, on scalars and
-//!   lanes alike. The scalar never calls a software `fma`, which would be ~20× slower.
+//!   lanes alike. The scalar never calls a software `fma`, which would be ~20× slower. The
+//!   exception is [`F32Fma`], an `f32` whose `mul_add` always fuses, for code compiled with
+//!   FMA at run time (the [`crate::batch`] kernels).
+//!
+//! [`Splat`] moves a material built on a scalar to any of these types.
 //! * Transcendentals (`exp`, `exp2`, `ln`, `log2`, `pow`, `sin`, `cos`) come from `std`/`libm`
 //!   on scalars (≤ 1 ULP) and from `wide`'s polynomial kernels on lanes. They differ by a few
 //!   ULP; `tests/simd_lanes.rs` states and checks the bound for every public formula.
@@ -35,8 +39,8 @@ use wide::{u32x4, u32x8, u32x16, u64x4};
 
 /// A number or a SIMD register of numbers on which every formula of the crate runs.
 ///
-/// Implemented for `f32`, `f64`, [`f32x4`], [`f32x8`], [`f32x16`] and [`f64x4`]. The
-/// arithmetic operators act lane-wise; comparisons return a [`Real::Mask`] that
+/// Implemented for `f32`, `f64`, [`F32Fma`], [`f32x4`], [`f32x8`], [`f32x16`] and [`f64x4`].
+/// The arithmetic operators act lane-wise; comparisons return a [`Real::Mask`] that
 /// [`Real::select`] consumes.
 ///
 /// # Examples

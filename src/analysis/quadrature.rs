@@ -119,7 +119,7 @@ fn gk15<const N: usize>(f: &mut impl FnMut(f64) -> Quad<N>, a: f64, b: f64) -> (
         let raw = ((k[ch] - g[ch]) * h).abs();
         let resasc = resasc * h.abs();
         let e = if resasc > 0.0 && raw > 0.0 {
-            resasc * (200.0 * raw / resasc).powf(1.5).min(1.0)
+            resasc * crate::math::f64m::pow(200.0 * raw / resasc, 1.5).min(1.0)
         } else {
             raw
         };

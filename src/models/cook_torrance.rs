@@ -103,9 +103,7 @@ impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>, S: SqrtFn> CookTorrance<R, D, F, G
             _r: PhantomData,
         }
     }
-}
 
-impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>, S: SqrtFn> CookTorrance<R, D, F, G, S> {
     /// `(cos θd, cos²θd, D·V)` with `D·V = 0` below the horizon: everything but the Fresnel
     /// term. Shared by `eval` and the pipelined batch passes (one body).
     #[inline(always)]
