@@ -366,6 +366,22 @@ macro_rules! alpha_ndf_ctors {
 alpha_ndf_ctors!(Ggx);
 alpha_ndf_ctors!(Beckmann);
 
+/// `Splat` of the two alpha-parameterized NDFs (same fields).
+macro_rules! splat_alpha_ndf {
+    ($($t:ident),*) => {
+        $(splat_ndf!($t {
+            alpha_x,
+            alpha_y,
+            alpha_x2,
+            alpha_y2,
+            inv_alpha_x2,
+            inv_alpha_y2,
+            norm
+        });)*
+    };
+}
+splat_alpha_ndf!(Ggx, Beckmann);
+
 /// The quadratic forms in which [`Ggx`] and [`GgxIsotropic`] differ. The GGX formulas —
 /// `D`, `Λ` and the visibility denominators — are written once on top of them
 /// (the private `ggx_formulas!` macro), so the isotropic type is the same body with cheaper forms.
@@ -470,29 +486,11 @@ macro_rules! ggx_formulas {
 ggx_formulas!(Ggx);
 ggx_formulas!(GgxIsotropic);
 
-splat_ndf!(Ggx {
-    alpha_x,
-    alpha_y,
-    alpha_x2,
-    alpha_y2,
-    inv_alpha_x2,
-    inv_alpha_y2,
-    norm
-});
 splat_ndf!(GgxIsotropic {
     alpha,
     alpha2,
     one_minus_alpha2,
     inv_alpha2,
-    norm
-});
-splat_ndf!(Beckmann {
-    alpha_x,
-    alpha_y,
-    alpha_x2,
-    alpha_y2,
-    inv_alpha_x2,
-    inv_alpha_y2,
     norm
 });
 splat_ndf!(BlinnPhong { shininess, norm });

@@ -265,6 +265,24 @@ pub trait Scalar: Real<Scalar = Self, Mask = bool> + PartialOrd + Into<f64> + De
     fn of(x: f64) -> Self;
 }
 
+/// `select`, `any` and `all` of a one-lane `Real` whose mask is `bool`.
+macro_rules! bool_mask {
+    () => {
+        #[inline(always)]
+        fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
+            if mask { if_true } else { if_false }
+        }
+        #[inline(always)]
+        fn any(mask: bool) -> bool {
+            mask
+        }
+        #[inline(always)]
+        fn all(mask: bool) -> bool {
+            mask
+        }
+    };
+}
+
 macro_rules! impl_scalar {
     ($t:ty, $m:ident, $mb:expr, $emask:expr, $fmask:expr, $onebits:expr, $one_b:expr, $eoff:expr, $rsqrt_magic:expr) => {
         impl Real for $t {
@@ -387,18 +405,7 @@ macro_rules! impl_scalar {
             fn is_finite(self) -> bool {
                 <$t>::is_finite(self)
             }
-            #[inline(always)]
-            fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
-                if mask { if_true } else { if_false }
-            }
-            #[inline(always)]
-            fn any(mask: bool) -> bool {
-                mask
-            }
-            #[inline(always)]
-            fn all(mask: bool) -> bool {
-                mask
-            }
+            bool_mask!();
         }
 
         impl Scalar for $t {
@@ -769,18 +776,7 @@ impl Real for F32Fma {
     fn is_finite(self) -> bool {
         self.0.is_finite()
     }
-    #[inline(always)]
-    fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
-        if mask { if_true } else { if_false }
-    }
-    #[inline(always)]
-    fn any(mask: bool) -> bool {
-        mask
-    }
-    #[inline(always)]
-    fn all(mask: bool) -> bool {
-        mask
-    }
+    bool_mask!();
 }
 
 // ---------------------------------------------------------------------------------------------
