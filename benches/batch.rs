@@ -347,27 +347,20 @@ fn bench_rough_conductor(c: &mut Criterion) {
 }
 
 fn bench_normalized_blinn_phong(c: &mut Criterion) {
-    use brdf::fast::{ExactPow, FastPow};
-    use brdf::models::{CosThetaI, NormalizedBlinnPhong};
+    use brdf::fast::FastPow;
+    use brdf::models::NormalizedBlinnPhong;
     use brdf::normalization::Normalization;
     let (wi, wo) = (directions(5), directions(13));
     let out = vec![0.0f32; N];
-    let exact = NormalizedBlinnPhong::<f32, 1, CosThetaI, ExactPow>::new(
-        [0.5],
+    let exact = NormalizedBlinnPhong::new(
+        [0.5_f32],
         0.5,
         [0.04],
         64.0,
         Normalization::TRI_ACE_2009_FIT,
     )
     .unwrap();
-    let fast = NormalizedBlinnPhong::<f32, 1, CosThetaI, FastPow>::new(
-        [0.5],
-        0.5,
-        [0.04],
-        64.0,
-        Normalization::TRI_ACE_2009_FIT,
-    )
-    .unwrap();
+    let fast = exact.with_pow::<FastPow>();
     let mut g = c.benchmark_group("batch/normalized_blinn_phong");
     g.throughput(Throughput::Elements(N as u64));
     let mut out = [out];

@@ -12,6 +12,7 @@ use brdf::masking::{
     SmithSeparableWalter, VCavity,
 };
 use brdf::ndf::{AshikhminShirley, Beckmann, BlinnPhong, Ggx, Ndf, SmithLambda};
+use brdf::real::Splat;
 use brdf::vec3::half_vector;
 use brdf::{Real, Scalar, Vec3, f32x4, f32x8, f32x16, f64x4};
 use criterion::measurement::WallTime;
@@ -102,6 +103,8 @@ macro_rules! all_types {
     (@one $group:expr, $p:expr, $t:ty, $id:expr, $n:ident, $setup:expr, $wi:ident, $wo:ident, $wm:ident, $body:expr) => {{
         #[allow(dead_code)]
         type R = $t;
+        #[allow(dead_code)]
+        type S = <$t as Real>::Scalar;
         #[allow(unused_variables)]
         let $n = $setup;
         #[allow(unused_variables)]
@@ -115,49 +118,51 @@ fn ndfs(c: &mut Criterion) {
         c,
         "d/ggx",
         &p,
-        n = Ggx::<R>::new(0.3).unwrap(),
+        n = Ggx::<S>::new(0.3).unwrap().splat::<R>(),
         |wi, wo, wm| n.d(wm)
     );
     all_types!(
         c,
         "d/ggx_aniso",
         &p,
-        n = Ggx::<R>::anisotropic(0.1, 0.5).unwrap(),
+        n = Ggx::<S>::anisotropic(0.1, 0.5).unwrap().splat::<R>(),
         |wi, wo, wm| n.d(wm)
     );
     all_types!(
         c,
         "d/beckmann",
         &p,
-        n = Beckmann::<R>::new(0.3).unwrap(),
+        n = Beckmann::<S>::new(0.3).unwrap().splat::<R>(),
         |wi, wo, wm| n.d(wm)
     );
     all_types!(
         c,
         "d/blinn_phong",
         &p,
-        n = BlinnPhong::<R>::new(64.0).unwrap(),
+        n = BlinnPhong::<S>::new(64.0).unwrap().splat::<R>(),
         |wi, wo, wm| n.d(wm)
     );
     all_types!(
         c,
         "d/ashikhmin_shirley",
         &p,
-        n = AshikhminShirley::<R>::new(10.0, 500.0).unwrap(),
+        n = AshikhminShirley::<S>::new(10.0, 500.0)
+            .unwrap()
+            .splat::<R>(),
         |wi, wo, wm| n.d(wm)
     );
     all_types!(
         c,
         "lambda/ggx",
         &p,
-        n = Ggx::<R>::anisotropic(0.1, 0.5).unwrap(),
+        n = Ggx::<S>::anisotropic(0.1, 0.5).unwrap().splat::<R>(),
         |wi, wo, wm| n.lambda(wi)
     );
     all_types!(
         c,
         "lambda/beckmann",
         &p,
-        n = Beckmann::<R>::anisotropic(0.1, 0.5).unwrap(),
+        n = Beckmann::<S>::anisotropic(0.1, 0.5).unwrap().splat::<R>(),
         |wi, wo, wm| n.lambda(wi)
     );
     all_types!(c, "erf", &p, n = (), |wi, wo, wm| brdf::ndf::erf(
@@ -171,70 +176,70 @@ fn masking(c: &mut Criterion) {
         c,
         "v/correlated_ggx",
         &p,
-        n = Ggx::<R>::new(0.3).unwrap(),
+        n = Ggx::<S>::new(0.3).unwrap().splat::<R>(),
         |wi, wo, wm| SmithHeightCorrelated.visibility(&n, wi, wo, wm)
     );
     all_types!(
         c,
         "v/separable_ggx",
         &p,
-        n = Ggx::<R>::new(0.3).unwrap(),
+        n = Ggx::<S>::new(0.3).unwrap().splat::<R>(),
         |wi, wo, wm| SmithSeparable.visibility(&n, wi, wo, wm)
     );
     all_types!(
         c,
         "v/correlated_beckmann",
         &p,
-        n = Beckmann::<R>::new(0.3).unwrap(),
+        n = Beckmann::<S>::new(0.3).unwrap().splat::<R>(),
         |wi, wo, wm| SmithHeightCorrelated.visibility(&n, wi, wo, wm)
     );
     all_types!(
         c,
         "v/separable_walter_beckmann",
         &p,
-        n = Beckmann::<R>::new(0.3).unwrap(),
+        n = Beckmann::<S>::new(0.3).unwrap().splat::<R>(),
         |wi, wo, wm| SmithSeparableWalter.visibility(&n, wi, wo, wm)
     );
     all_types!(
         c,
         "v/v_cavity",
         &p,
-        n = Ggx::<R>::new(0.3).unwrap(),
+        n = Ggx::<S>::new(0.3).unwrap().splat::<R>(),
         |wi, wo, wm| VCavity.visibility(&n, wi, wo, wm)
     );
     all_types!(
         c,
         "v/schlick_ggx",
         &p,
-        n = Ggx::<R>::new(0.3).unwrap(),
+        n = Ggx::<S>::new(0.3).unwrap().splat::<R>(),
         |wi, wo, wm| SchlickGgx.visibility(&n, wi, wo, wm)
     );
     all_types!(
         c,
         "v/hammon",
         &p,
-        n = Ggx::<R>::new(0.3).unwrap(),
+        n = Ggx::<S>::new(0.3).unwrap().splat::<R>(),
         |wi, wo, wm| HammonApprox.visibility(&n, wi, wo, wm)
     );
     all_types!(
         c,
         "v/kelemen",
         &p,
-        n = Ggx::<R>::new(0.3).unwrap(),
+        n = Ggx::<S>::new(0.3).unwrap().splat::<R>(),
         |wi, wo, wm| Kelemen.visibility(&n, wi, wo, wm)
     );
     all_types!(
         c,
         "v/implicit",
         &p,
-        n = Ggx::<R>::new(0.3).unwrap(),
+        n = Ggx::<S>::new(0.3).unwrap().splat::<R>(),
         |wi, wo, wm| Implicit.visibility(&n, wi, wo, wm)
     );
     all_types!(
         c,
         "g2/correlated_ggx",
         &p,
-        n = Ggx::<R>::new(0.3).unwrap(),
+        n = Ggx::<S>::new(0.3).unwrap().splat::<R>(),
         |wi, wo, wm| SmithHeightCorrelated.g2(&n, wi, wo, wm)
     );
 }

@@ -336,7 +336,7 @@ pub fn eval_with<B: BatchBrdf<N>, const N: usize>(
 /// use brdf::batch::{Directions, eval};
 /// use brdf::models::Lambert;
 ///
-/// let white = Lambert::<f32, 1>::new([1.0]).unwrap();
+/// let white = Lambert::new([1.0_f32]).unwrap();
 /// let z = [1.0f32; 100];
 /// let zero = [0.0f32; 100];
 /// let mut f = [0.0f32; 100];
@@ -454,9 +454,9 @@ where
 /// use brdf::models::{CosThetaI, NormalizedBlinnPhong};
 /// use brdf::normalization::Normalization;
 ///
-/// let nbp = NormalizedBlinnPhong::<f32, 1, CosThetaI, FastPow>::new(
+/// let nbp = NormalizedBlinnPhong::<f32, 1>::new(
 ///     [0.5], 0.5, [0.04], 64.0, Normalization::TRI_ACE_2009_FIT,
-/// ).unwrap();
+/// ).unwrap().with_pow::<FastPow>();
 /// let n = 1000;
 /// let x: Vec<f32> = (0..n).map(|i| 0.5 * (i as f32 / n as f32)).collect();
 /// let z: Vec<f32> = x.iter().map(|x| (1.0 - x * x).sqrt()).collect();

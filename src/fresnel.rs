@@ -790,11 +790,6 @@ fn gulbrandsen_n_range<R: Real>(r: R) -> (R, R) {
 // FresnelTerm implementations
 // ---------------------------------------------------------------------------------------
 
-#[inline]
-fn splat<R: Real>(x: R::Scalar) -> R {
-    R::splat(x)
-}
-
 /// Schlick's approximation per channel, with `f0` and `f90` per channel:
 /// `F = F0 + (F90 − F0)(1 − cos θd)⁵` (see [`schlick_f90`]).
 ///
@@ -802,9 +797,9 @@ fn splat<R: Real>(x: R::Scalar) -> R {
 ///
 /// ```
 /// use brdf::fresnel::{FresnelTerm, Schlick};
-/// let gold = Schlick::<f32, 3>::new([1.0, 0.78, 0.34]).unwrap();
+/// let gold = Schlick::new([1.0_f32, 0.78, 0.34]).unwrap();
 /// assert_eq!(gold.eval(1.0), [1.0, 0.78, 0.34]);
-/// assert!(Schlick::<f32, 1>::new([1.5]).is_err());
+/// assert!(Schlick::new([1.5_f32]).is_err());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Schlick<R, const N: usize> {
@@ -812,26 +807,23 @@ pub struct Schlick<R, const N: usize> {
     f90: [R; N],
 }
 
-impl<R: Real, const N: usize> Schlick<R, N> {
+impl<S: Scalar, const N: usize> Schlick<S, N> {
     /// Schlick with `f90 = 1`. Each `f0 ∈ [0, 1]`, else [`Error`].
-    pub fn new(f0: [R::Scalar; N]) -> Result<Self, Error> {
-        Self::with_f90(f0, [<R::Scalar as Scalar>::of(1.0); N])
+    pub fn new(f0: [S; N]) -> Result<Self, Error> {
+        Self::with_f90(f0, [S::one(); N])
     }
 
     /// Schlick with an explicit grazing reflectance. Each `f0, f90 ∈ [0, 1]`, else [`Error`].
-    pub fn with_f90(f0: [R::Scalar; N], f90: [R::Scalar; N]) -> Result<Self, Error> {
+    pub fn with_f90(f0: [S; N], f90: [S; N]) -> Result<Self, Error> {
         for i in 0..N {
             error::unit_interval("f0", f0[i])?;
             error::unit_interval("f90", f90[i])?;
         }
-        Ok(Self {
-            f0: f0.map(splat),
-            f90: f90.map(splat),
-        })
+        Ok(Self { f0, f90 })
     }
 
     /// Schlick with `f0 = ((η − 1)/(η + 1))²` from a real IOR per channel (`eta > 0`).
-    pub fn from_ior(eta: [R::Scalar; N]) -> Result<Self, Error> {
+    pub fn from_ior(eta: [S; N]) -> Result<Self, Error> {
         let mut f0 = eta;
         for i in 0..N {
             error::positive("eta", eta[i])?;
@@ -843,7 +835,7 @@ impl<R: Real, const N: usize> Schlick<R, N> {
     /// Schlick with `f0` from a complex IOR per channel, `((η−1)² + k²)/((η+1)² + k²)`
     /// (`eta > 0`, `k ≥ 0`). Reproduces the exact [`Conductor`] at normal and grazing
     /// incidence only; see the module docs for its error in between.
-    pub fn from_complex_ior(eta: [R::Scalar; N], k: [R::Scalar; N]) -> Result<Self, Error> {
+    pub fn from_complex_ior(eta: [S; N], k: [S; N]) -> Result<Self, Error> {
         let mut f0 = eta;
         for i in 0..N {
             error::positive("eta", eta[i])?;
@@ -852,7 +844,9 @@ impl<R: Real, const N: usize> Schlick<R, N> {
         }
         Self::new(f0)
     }
+}
 
+impl<R: Real, const N: usize> Schlick<R, N> {
     /// Normal-incidence reflectance per channel.
     pub fn f0(&self) -> [R; N] {
         self.f0
@@ -893,7 +887,7 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Schlick<R, N> {
 ///
 /// ```
 /// use brdf::fresnel::{Dielectric, FresnelTerm};
-/// let glass = Dielectric::<f64>::new(1.5).unwrap();
+/// let glass = Dielectric::new(1.5_f64).unwrap();
 /// let [f] = FresnelTerm::<f64, 1>::eval(&glass, 1.0);
 /// assert!((f - 0.04).abs() < 1e-15);
 /// ```
@@ -902,21 +896,23 @@ pub struct Dielectric<R> {
     eta: R,
 }
 
-impl<R: Real> Dielectric<R> {
+impl<S: Scalar> Dielectric<S> {
     /// A dielectric interface with relative IOR `eta = η_t/η_i > 0`, else [`Error`].
-    pub fn new(eta: R::Scalar) -> Result<Self, Error> {
+    pub fn new(eta: S) -> Result<Self, Error> {
         error::positive("eta", eta)?;
-        Ok(Self { eta: R::splat(eta) })
+        Ok(Self { eta })
     }
 
     /// The dielectric (`η ≥ 1`) whose normal-incidence reflectance is `f0`
     /// (see [`ior_from_f0`]). `f0 ∈ [0, 1)`, else [`Error`]: `f0 = 1` has no real IOR.
-    pub fn from_f0(f0: R::Scalar) -> Result<Self, Error> {
+    pub fn from_f0(f0: S) -> Result<Self, Error> {
         error::check("f0", f0, "[0, 1)", |v| (0.0..1.0).contains(&v))?;
         // In f64: in f32, √f0 rounds to 1 for f0 within an ulp of 1.
-        Self::new(<R::Scalar as Scalar>::of(ior_from_f0(f0.into())))
+        Self::new(S::of(ior_from_f0(f0.into())))
     }
+}
 
+impl<R: Real> Dielectric<R> {
     /// The relative IOR.
     pub fn eta(&self) -> R {
         self.eta
@@ -970,20 +966,20 @@ pub struct Conductor<R, const N: usize> {
     nk2: [R; N],
 }
 
-impl<R: Real, const N: usize> Conductor<R, N> {
+impl<S: Scalar, const N: usize> Conductor<S, N> {
     /// A conductor with `eta > 0` and `k ≥ 0` per channel, else [`Error`].
-    pub fn new(eta: [R::Scalar; N], k: [R::Scalar; N]) -> Result<Self, Error> {
+    pub fn new(eta: [S; N], k: [S; N]) -> Result<Self, Error> {
         for i in 0..N {
             error::positive("eta", eta[i])?;
             error::non_negative("k", k[i])?;
         }
-        Ok(Self::from_lanes(eta.map(splat), k.map(splat)))
+        Ok(Self::from_valid(eta, k))
     }
 
-    /// Builds the per-channel constants from already validated lanes.
+    /// Builds the per-channel constants from already validated parameters.
     #[inline]
-    fn from_lanes(eta: [R; N], k: [R; N]) -> Self {
-        let c: [(R, R); N] = core::array::from_fn(|i| conductor_constants(eta[i], k[i]));
+    fn from_valid(eta: [S; N], k: [S; N]) -> Self {
+        let c: [(S, S); N] = core::array::from_fn(|i| conductor_constants(eta[i], k[i]));
         Self {
             eta,
             k,
@@ -994,21 +990,20 @@ impl<R: Real, const N: usize> Conductor<R, N> {
 
     /// A conductor from Gulbrandsen's artist-friendly reflectivity `r ∈ [0, 1)` and edge
     /// tint `g ∈ [0, 1]` per channel (see [`gulbrandsen_to_nk`]), else [`Error`].
-    pub fn from_reflectivity_edge_tint(
-        r: [R::Scalar; N],
-        g: [R::Scalar; N],
-    ) -> Result<Self, Error> {
+    pub fn from_reflectivity_edge_tint(r: [S; N], g: [S; N]) -> Result<Self, Error> {
         let mut eta = r;
         let mut k = r;
         for i in 0..N {
             error::check("r", r[i], "[0, 1)", |v| (0.0..1.0).contains(&v))?;
             error::unit_interval("g", g[i])?;
             let (n, kk) = gulbrandsen_to_nk::<f64>(r[i].into(), g[i].into());
-            (eta[i], k[i]) = (<R::Scalar as Scalar>::of(n), <R::Scalar as Scalar>::of(kk));
+            (eta[i], k[i]) = (S::of(n), S::of(kk));
         }
         Self::new(eta, k)
     }
+}
 
+impl<R: Real, const N: usize> Conductor<R, N> {
     /// Real part of the IOR per channel.
     pub fn eta(&self) -> [R; N] {
         self.eta
@@ -1020,23 +1015,19 @@ impl<R: Real, const N: usize> Conductor<R, N> {
     }
 }
 
-impl<R: Real> Conductor<R, 1> {
+impl<S: Scalar> Conductor<S, 1> {
     /// A one-channel conductor from a single-wavelength preset (e.g. the seed table's
     /// [`crate::ior::GOLD`]). Dielectric presets (`k = 0`) are accepted: the result equals
     /// [`Dielectric`] seen from outside. Errors only for a malformed preset.
     pub fn from_preset(p: &crate::ior::Preset) -> Result<Self, Error> {
-        Self::new(
-            [<R::Scalar as Scalar>::of(p.eta)],
-            [<R::Scalar as Scalar>::of(p.k)],
-        )
+        Self::new([S::of(p.eta)], [S::of(p.k)])
     }
 }
 
-impl<R: Real> Conductor<R, 3> {
+impl<S: Scalar> Conductor<S, 3> {
     /// An RGB conductor from a measured preset of [`crate::ior::METALS_RGB`].
     pub fn from_rgb_preset(p: &crate::ior::RgbPreset) -> Self {
-        let of = <R::Scalar as Scalar>::of;
-        Self::from_lanes(p.eta.map(|x| R::splat(of(x))), p.k.map(|x| R::splat(of(x))))
+        Self::from_valid(p.eta.map(S::of), p.k.map(S::of))
     }
 }
 
@@ -1086,27 +1077,24 @@ pub struct F82Tint<R, const N: usize> {
     b: [R; N],
 }
 
-impl<R: Real, const N: usize> F82Tint<R, N> {
+impl<S: Scalar, const N: usize> F82Tint<S, N> {
     /// From `f0 ∈ [0, 1]` and `tint ∈ [0, 1]` (Open PBR's `base_color` and `specular_color`
     /// of a metal) per channel, else [`Error`].
-    pub fn new(f0: [R::Scalar; N], tint: [R::Scalar; N]) -> Result<Self, Error> {
+    pub fn new(f0: [S; N], tint: [S; N]) -> Result<Self, Error> {
         let mut b = f0;
         for i in 0..N {
             error::unit_interval("f0", f0[i])?;
             error::unit_interval("tint", tint[i])?;
             b[i] = f82_b(f0[i], tint[i]);
         }
-        Ok(Self {
-            f0: f0.map(splat),
-            b: b.map(splat),
-        })
+        Ok(Self { f0, b })
     }
 
     /// Fitted to a complex IOR per channel (`eta > 0`, `k ≥ 0`, else [`Error`]): `F0` and
     /// the reflectance at `cos θ = 1/7` are taken from the exact [`conductor`] Fresnel, so
     /// the model is exact at `μ = 1`, `1/7` and `0`. (The implied tint may exceed 1 for
     /// some metals; `b` is then negative, which the model handles.)
-    pub fn from_ior(eta: [R::Scalar; N], k: [R::Scalar; N]) -> Result<Self, Error> {
+    pub fn from_ior(eta: [S; N], k: [S; N]) -> Result<Self, Error> {
         let mut f0 = eta;
         let mut b = eta;
         for i in 0..N {
@@ -1115,15 +1103,14 @@ impl<R: Real, const N: usize> F82Tint<R, N> {
             let (n, kk): (f64, f64) = (eta[i].into(), k[i].into());
             let f0_i = conductor(1.0, n, kk);
             let f82 = conductor(F82_COS_THETA, n, kk);
-            f0[i] = <R::Scalar as Scalar>::of(f0_i);
-            b[i] = <R::Scalar as Scalar>::of((schlick(f0_i, F82_COS_THETA) - f82) / F82_W);
+            f0[i] = S::of(f0_i);
+            b[i] = S::of((schlick(f0_i, F82_COS_THETA) - f82) / F82_W);
         }
-        Ok(Self {
-            f0: f0.map(splat),
-            b: b.map(splat),
-        })
+        Ok(Self { f0, b })
     }
+}
 
+impl<R: Real, const N: usize> F82Tint<R, N> {
     /// Normal-incidence reflectance per channel.
     pub fn f0(&self) -> [R; N] {
         self.f0
@@ -1135,12 +1122,11 @@ impl<R: Real, const N: usize> F82Tint<R, N> {
     }
 }
 
-impl<R: Real> F82Tint<R, 3> {
+impl<S: Scalar> F82Tint<S, 3> {
     /// Fitted to a measured RGB preset of [`crate::ior::METALS_RGB`] (see
     /// [`F82Tint::from_ior`]).
     pub fn from_rgb_preset(p: &crate::ior::RgbPreset) -> Self {
-        let of = <R::Scalar as Scalar>::of;
-        Self::from_ior(p.eta.map(of), p.k.map(of)).expect("presets are valid")
+        Self::from_ior(p.eta.map(S::of), p.k.map(S::of)).expect("presets are valid")
     }
 }
 

@@ -235,13 +235,13 @@ const SHININESS_DOMAIN: &str = "[0, 199999998]";
 /// ```
 /// use brdf::{Vec3, ndf::{Ggx, Ndf, SmithLambda}};
 ///
-/// let ggx = Ggx::<f64>::new(0.5).unwrap();
+/// let ggx = Ggx::new(0.5_f64).unwrap();
 /// // Peak value 1/(π α²).
 /// let peak = ggx.d(Vec3::new(0.0, 0.0, 1.0));
 /// assert!((peak - 1.0 / (core::f64::consts::PI * 0.25)).abs() < 1e-12);
 /// // No masking at normal incidence.
 /// assert_eq!(ggx.g1(Vec3::new(0.0, 0.0, 1.0)), 1.0);
-/// assert!(Ggx::<f32>::new(0.0).is_err());
+/// assert!(Ggx::new(0.0_f32).is_err());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ggx<R> {
@@ -258,13 +258,13 @@ pub struct Ggx<R> {
 /// Builds the shared constants of the two alpha-parameterized NDFs.
 macro_rules! alpha_ndf_ctors {
     ($t:ident) => {
-        impl<R: Real> $t<R> {
+        impl<S: Scalar> $t<S> {
             /// Isotropic distribution with slope parameter `alpha ∈ [1e-4, 1]`.
             ///
             /// # Errors
             /// [`Error::NotFinite`] or [`Error::OutOfDomain`] for `alpha` outside `[1e-4, 1]`.
             #[inline]
-            pub fn new(alpha: R::Scalar) -> Result<Self, Error> {
+            pub fn new(alpha: S) -> Result<Self, Error> {
                 Self::anisotropic(alpha, alpha)
             }
 
@@ -274,8 +274,8 @@ macro_rules! alpha_ndf_ctors {
             /// # Errors
             /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming the offending parameter.
             #[inline]
-            pub fn anisotropic(alpha_x: R::Scalar, alpha_y: R::Scalar) -> Result<Self, Error> {
-                Self::from_lanes(R::splat(alpha_x), R::splat(alpha_y))
+            pub fn anisotropic(alpha_x: S, alpha_y: S) -> Result<Self, Error> {
+                Self::from_lanes(alpha_x, alpha_y)
             }
 
             /// Isotropic distribution from perceptual roughness `roughness ∈ [0.01, 1]`,
@@ -285,10 +285,12 @@ macro_rules! alpha_ndf_ctors {
             /// As [`Self::new`] for the resulting `alpha` (so `roughness < 0.01` is rejected
             /// and reported as `alpha`).
             #[inline]
-            pub fn from_roughness(roughness: R::Scalar) -> Result<Self, Error> {
+            pub fn from_roughness(roughness: S) -> Result<Self, Error> {
                 Self::new(roughness * roughness)
             }
+        }
 
+        impl<R: Real> $t<R> {
             /// One (possibly different) material per lane: every lane of `alpha_x` and
             /// `alpha_y` is validated as in [`Self::anisotropic`].
             ///
@@ -525,8 +527,8 @@ splat_ndf!(AshikhminShirley {
 /// ```
 /// use brdf::{Vec3, ndf::{Ggx, GgxIsotropic, Ndf, SmithLambda}};
 ///
-/// let iso = GgxIsotropic::<f64>::new(0.3).unwrap();
-/// let ggx = Ggx::<f64>::new(0.3).unwrap();
+/// let iso = GgxIsotropic::new(0.3_f64).unwrap();
+/// let ggx = Ggx::new(0.3_f64).unwrap();
 /// let w = Vec3::new(0.6, 0.0, 0.8);
 /// assert!((iso.d(w) - ggx.d(w)).abs() < 1e-12 * ggx.d(w));
 /// assert!((iso.g1(w) - ggx.g1(w)).abs() < 1e-15);
@@ -542,14 +544,14 @@ pub struct GgxIsotropic<R> {
     norm: R,
 }
 
-impl<R: Real> GgxIsotropic<R> {
+impl<S: Scalar> GgxIsotropic<S> {
     /// The distribution with slope parameter `alpha ∈ [1e-4, 1]`.
     ///
     /// # Errors
     /// [`Error::NotFinite`] or [`Error::OutOfDomain`] for `alpha` outside `[1e-4, 1]`.
     #[inline]
-    pub fn new(alpha: R::Scalar) -> Result<Self, Error> {
-        Self::from_lanes(R::splat(alpha))
+    pub fn new(alpha: S) -> Result<Self, Error> {
+        Self::from_lanes(alpha)
     }
 
     /// From perceptual roughness `roughness ∈ [0.01, 1]`, `alpha = roughness²`.
@@ -557,10 +559,12 @@ impl<R: Real> GgxIsotropic<R> {
     /// # Errors
     /// As [`Self::new`] for the resulting `alpha`.
     #[inline]
-    pub fn from_roughness(roughness: R::Scalar) -> Result<Self, Error> {
+    pub fn from_roughness(roughness: S) -> Result<Self, Error> {
         Self::new(roughness * roughness)
     }
+}
 
+impl<R: Real> GgxIsotropic<R> {
     /// One (possibly different) material per lane, each validated as in [`Self::new`].
     ///
     /// # Errors
@@ -650,7 +654,7 @@ impl<R: Real> From<GgxIsotropic<R>> for Ggx<R> {
 /// ```
 /// use brdf::{Vec3, ndf::{Beckmann, Ndf, SmithLambda}};
 ///
-/// let b = Beckmann::<f64>::anisotropic(0.2, 0.4).unwrap();
+/// let b = Beckmann::anisotropic(0.2_f64, 0.4).unwrap();
 /// let peak = b.d(Vec3::new(0.0, 0.0, 1.0));
 /// assert!((peak - 1.0 / (core::f64::consts::PI * 0.08)).abs() < 1e-9);
 /// let grazing = Vec3::new(1.0, 0.0, 0.0);
@@ -838,10 +842,10 @@ pub fn erf<R: Real>(x: R) -> R {
 ///
 /// ```
 /// use brdf::{Vec3, ndf::{BlinnPhong, Ndf}};
-/// let bp = BlinnPhong::<f32>::new(100.0).unwrap();
+/// let bp = BlinnPhong::new(100.0_f32).unwrap();
 /// let peak = bp.d(Vec3::new(0.0, 0.0, 1.0));
 /// assert!((peak - 102.0 / (2.0 * core::f32::consts::PI)).abs() < 1e-4);
-/// assert!(BlinnPhong::<f32>::new(-1.0).is_err());
+/// assert!(BlinnPhong::new(-1.0_f32).is_err());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BlinnPhong<R> {
@@ -850,16 +854,18 @@ pub struct BlinnPhong<R> {
     norm: R,
 }
 
-impl<R: Real> BlinnPhong<R> {
+impl<S: Scalar> BlinnPhong<S> {
     /// Distribution with exponent `shininess ∈ [0, 2·10⁸]`.
     ///
     /// # Errors
     /// [`Error::NotFinite`] / [`Error::OutOfDomain`] for `shininess` outside the domain.
     #[inline]
-    pub fn new(shininess: R::Scalar) -> Result<Self, Error> {
-        Self::from_lanes(R::splat(shininess))
+    pub fn new(shininess: S) -> Result<Self, Error> {
+        Self::from_lanes(shininess)
     }
+}
 
+impl<R: Real> BlinnPhong<R> {
     /// One (possibly different) exponent per lane, each validated as in [`Self::new`].
     ///
     /// # Errors
@@ -933,7 +939,7 @@ pub(crate) fn ashikhmin_shirley_exponent<R: Real>(nu: R, nv: R, wm: Vec3<R>) -> 
 ///
 /// ```
 /// use brdf::{Vec3, ndf::{AshikhminShirley, Ndf}};
-/// let a = AshikhminShirley::<f64>::new(10.0, 1000.0).unwrap();
+/// let a = AshikhminShirley::new(10.0_f64, 1000.0).unwrap();
 /// let peak = a.d(Vec3::new(0.0, 0.0, 1.0));
 /// assert!((peak - (12.0f64 * 1002.0).sqrt() / (2.0 * core::f64::consts::PI)).abs() < 1e-12);
 /// ```
@@ -947,16 +953,18 @@ pub struct AshikhminShirley<R> {
     pdf_norm: R,
 }
 
-impl<R: Real> AshikhminShirley<R> {
+impl<S: Scalar> AshikhminShirley<S> {
     /// Lobe with exponents `nu` (tangent) and `nv` (bitangent), each in `[0, 2·10⁸]`.
     ///
     /// # Errors
     /// [`Error::NotFinite`] / [`Error::OutOfDomain`] naming `nu` or `nv`.
     #[inline]
-    pub fn new(nu: R::Scalar, nv: R::Scalar) -> Result<Self, Error> {
-        Self::from_lanes(R::splat(nu), R::splat(nv))
+    pub fn new(nu: S, nv: S) -> Result<Self, Error> {
+        Self::from_lanes(nu, nv)
     }
+}
 
+impl<R: Real> AshikhminShirley<R> {
     /// One (possibly different) pair of exponents per lane, validated as in [`Self::new`].
     ///
     /// # Errors

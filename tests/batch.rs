@@ -5,12 +5,11 @@
 mod common;
 
 use brdf::batch::{self, BatchBrdf, Directions, Isa};
-use brdf::fast::{ExactPow, FastPow};
+use brdf::fast::FastPow;
 use brdf::fresnel::{Conductor, Schlick};
 use brdf::masking::{SmithHeightCorrelated, SmithSeparable};
 use brdf::models::{
-    CookTorrance, CosThetaI, Lambert, MaxCos, NormalizedBlinnPhong, NormalizedBlinnPhongSpecular,
-    Sum,
+    CookTorrance, Lambert, MaxCos, NormalizedBlinnPhong, NormalizedBlinnPhongSpecular, Sum,
 };
 use brdf::ndf::{Ggx, GgxIsotropic};
 use brdf::normalization::Normalization;
@@ -185,29 +184,27 @@ fn pipelined_cook_torrance_matches_scalar() {
 fn pipelined_normalized_blinn_phong_matches_scalar() {
     let fit = Normalization::TRI_ACE_2009_FIT;
     check_pipelined(
-        &NormalizedBlinnPhong::<f32, 1, CosThetaI, FastPow>::new([0.5], 0.5, [0.04], 64.0, fit)
-            .unwrap(),
+        &NormalizedBlinnPhong::new([0.5_f32], 0.5, [0.04], 64.0, fit)
+            .unwrap()
+            .with_pow::<FastPow>(),
         1e-6,
     );
     check_pipelined(
-        &NormalizedBlinnPhong::<f32, 3, MaxCos, ExactPow>::new(
-            [0.2, 0.5, 0.7],
+        &NormalizedBlinnPhong::new(
+            [0.2_f32, 0.5, 0.7],
             0.8,
             [0.04, 0.05, 0.9],
             1e4,
             Normalization::TriAceExact,
         )
-        .unwrap(),
+        .unwrap()
+        .with_denominator::<MaxCos>(),
         1e-6,
     );
     check_pipelined(
-        &NormalizedBlinnPhongSpecular::<f32, 3, CosThetaI, FastPow>::new(
-            1.0,
-            [0.04, 0.5, 1.0],
-            0.0,
-            fit,
-        )
-        .unwrap(),
+        &NormalizedBlinnPhongSpecular::new(1.0_f32, [0.04, 0.5, 1.0], 0.0, fit)
+            .unwrap()
+            .with_pow::<FastPow>(),
         1e-6,
     );
 }

@@ -6,6 +6,7 @@ use brdf::ndf::{
     self, AshikhminShirley, Beckmann, BlinnPhong, Ggx, GgxIsotropic, Ndf, ProjectedAlpha,
     SmithLambda,
 };
+use brdf::real::Splat;
 use brdf::{Real, Vec3};
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -485,14 +486,16 @@ where
     R::Scalar: std::fmt::Debug,
 {
     let checks: Vec<(&str, R, bool)> = {
-        let g = Ggx::<R>::new(alpha).unwrap();
-        let gi = GgxIsotropic::<R>::new(alpha).unwrap();
-        let ga =
-            Ggx::<R>::anisotropic(alpha, alpha.max(<R::Scalar as brdf::Scalar>::of(0.1))).unwrap();
-        let b = Beckmann::<R>::new(alpha).unwrap();
-        let ba = Beckmann::<R>::anisotropic(<R::Scalar as brdf::Scalar>::of(1.0), alpha).unwrap();
-        let bp = BlinnPhong::<R>::new(s).unwrap();
-        let asx = AshikhminShirley::<R>::new(s, <R::Scalar as brdf::Scalar>::of(10.0)).unwrap();
+        let of = <R::Scalar as brdf::Scalar>::of;
+        let g = Ggx::new(alpha).unwrap().splat::<R>();
+        let gi = GgxIsotropic::new(alpha).unwrap().splat::<R>();
+        let ga = Ggx::anisotropic(alpha, alpha.max(of(0.1)))
+            .unwrap()
+            .splat::<R>();
+        let b = Beckmann::new(alpha).unwrap().splat::<R>();
+        let ba = Beckmann::anisotropic(of(1.0), alpha).unwrap().splat::<R>();
+        let bp = BlinnPhong::new(s).unwrap().splat::<R>();
+        let asx = AshikhminShirley::new(s, of(10.0)).unwrap().splat::<R>();
         vec![
             ("ggx d", g.d(w), true),
             ("ggx aniso d", ga.d(w), true),

@@ -42,7 +42,7 @@ use crate::{Error, Real, Vec3};
 ///
 /// ```
 /// use brdf::{Vec3, models::{Brdf, AshikhminShirley}};
-/// let m = AshikhminShirley::<f32, 1>::new([0.0], [1.0], 100.0, 10.0)?;
+/// let m = AshikhminShirley::new([0.0_f32], [1.0], 100.0, 10.0)?;
 /// let n = Vec3::new(0.0, 0.0, 1.0);
 /// // Peak at normal incidence: √(101·11)/(8π).
 /// let peak = (101.0f32 * 11.0).sqrt() / (8.0 * core::f32::consts::PI);
@@ -58,19 +58,14 @@ pub struct AshikhminShirley<R, const N: usize> {
     nv: R,
 }
 
-impl<R: Real, const N: usize> AshikhminShirley<R, N> {
+impl<S: Scalar, const N: usize> AshikhminShirley<S, N> {
     /// Diffuse `rd` and specular (normal-incidence Fresnel) `rs` per channel in `[0, 1]`,
     /// exponents `nu` (along x) and `nv` (along y) in `[0, 1e6]`.
     ///
     /// # Errors
     /// Names `"rd"`, `"rs"`, `"nu"` or `"nv"`.
     #[inline]
-    pub fn new(
-        rd: [R::Scalar; N],
-        rs: [R::Scalar; N],
-        nu: R::Scalar,
-        nv: R::Scalar,
-    ) -> Result<Self, Error> {
+    pub fn new(rd: [S; N], rs: [S; N], nu: S, nv: S) -> Result<Self, Error> {
         let rd = unit_channels("rd", rd)?;
         let rs = unit_channels("rs", rs)?;
         let ok = |v: f64| (0.0..=1e6).contains(&v);
@@ -84,9 +79,9 @@ impl<R: Real, const N: usize> AshikhminShirley<R, N> {
         Ok(Self {
             rs: splat_channels(rs),
             diffuse_k: splat_channels(diffuse_k),
-            spec_k: R::from_f64(((nu + 1.0) * (nv + 1.0)).sqrt() / (8.0 * core::f64::consts::PI)),
-            nu: R::from_f64(nu),
-            nv: R::from_f64(nv),
+            spec_k: S::from_f64(((nu + 1.0) * (nv + 1.0)).sqrt() / (8.0 * core::f64::consts::PI)),
+            nu: S::from_f64(nu),
+            nv: S::from_f64(nv),
         })
     }
 }

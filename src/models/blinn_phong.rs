@@ -85,28 +85,23 @@ pub struct BlinnPhongClassic<R, const N: usize, S = ExactSqrt> {
     _s: PhantomData<S>,
 }
 
-impl<R: Real, const N: usize> BlinnPhongClassic<R, N> {
+impl<T: Scalar, const N: usize> BlinnPhongClassic<T, N> {
     /// Engine Blinn-Phong with diffuse `rd`, specular coefficient `rs`, normal-incidence
     /// Fresnel reflectance `f0` (all in `[0, 1]`) and exponent `shininess ∈ [0, ∞)`.
     ///
     /// # Errors
     /// Names `"rd"`, `"rs"`, `"f0"` or `"shininess"`.
     #[inline]
-    pub fn new(
-        rd: [R::Scalar; N],
-        rs: R::Scalar,
-        f0: [R::Scalar; N],
-        shininess: R::Scalar,
-    ) -> Result<Self, Error> {
+    pub fn new(rd: [T; N], rs: T, f0: [T; N], shininess: T) -> Result<Self, Error> {
         let rd = unit_channels("rd", rd)?;
         let rs: f64 = crate::error::unit_interval("rs", rs)?.into();
         let f0 = unit_channels("f0", f0)?;
         let s = shininess_of(shininess)?;
         Ok(Self {
             rd: splat_channels(rd),
-            rs: R::from_f64(rs),
+            rs: T::from_f64(rs),
             f0: splat_channels(f0),
-            shininess: R::from_f64(s),
+            shininess: T::from_f64(s),
             _s: PhantomData,
         })
     }
@@ -267,19 +262,19 @@ pub struct NormalizedBlinnPhongSpecular<R, const N: usize, V = CosThetaI, P = Ex
     _v: PhantomData<(V, P)>,
 }
 
-impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn>
-    NormalizedBlinnPhongSpecular<R, N, V, P>
-{
+impl<S: Scalar, const N: usize> NormalizedBlinnPhongSpecular<S, N> {
     /// Lobe with specular intensity `rs ∈ [0, 1]`, Fresnel `f0 ∈ [0, 1]` per channel and
-    /// exponent `shininess ∈ [0, ∞)`; `c(s)` is computed once, in `f64`.
+    /// exponent `shininess ∈ [0, ∞)`; `c(s)` is computed once, in `f64`. The seed's
+    /// [`CosThetaI`] denominator and [`ExactPow`]; choose others with
+    /// [`Self::with_denominator`] and [`Self::with_pow`].
     ///
     /// # Errors
     /// Names `"rs"`, `"f0"`, `"shininess"` or `"offset"` (of [`Normalization::TriAceFit`]).
     #[inline]
     pub fn new(
-        rs: R::Scalar,
-        f0: [R::Scalar; N],
-        shininess: R::Scalar,
+        rs: S,
+        f0: [S; N],
+        shininess: S,
         normalization: Normalization,
     ) -> Result<Self, Error> {
         let rs: f64 = crate::error::unit_interval("rs", rs)?.into();
@@ -287,14 +282,50 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn>
         let s = shininess_of(shininess)?;
         let normalization = normalization.validate()?;
         Ok(Self {
-            rs_c: R::from_f64(rs * normalization.factor(s)),
+            rs_c: S::from_f64(rs * normalization.factor(s)),
             f0: splat_channels(f0),
-            half_shininess: R::from_f64(0.5 * s),
+            half_shininess: S::from_f64(0.5 * s),
             normalization,
             _v: PhantomData,
         })
     }
+}
 
+impl<R, const N: usize, V, P> NormalizedBlinnPhongSpecular<R, N, V, P> {
+    /// The same lobe divided by another [`SpecularDenominator`] (e.g. [`MaxCos`], tri-Ace's
+    /// reciprocal 2010 form). The stored constants do not depend on it: this costs nothing.
+    #[inline]
+    #[must_use]
+    pub fn with_denominator<V2: SpecularDenominator>(
+        self,
+    ) -> NormalizedBlinnPhongSpecular<R, N, V2, P> {
+        NormalizedBlinnPhongSpecular {
+            rs_c: self.rs_c,
+            f0: self.f0,
+            half_shininess: self.half_shininess,
+            normalization: self.normalization,
+            _v: PhantomData,
+        }
+    }
+
+    /// The same lobe with its power computed by another [`PowFn`] (e.g.
+    /// [`crate::fast::FastPow`] for batches). Costs nothing.
+    #[inline]
+    #[must_use]
+    pub fn with_pow<P2: PowFn>(self) -> NormalizedBlinnPhongSpecular<R, N, V, P2> {
+        NormalizedBlinnPhongSpecular {
+            rs_c: self.rs_c,
+            f0: self.f0,
+            half_shininess: self.half_shininess,
+            normalization: self.normalization,
+            _v: PhantomData,
+        }
+    }
+}
+
+impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn>
+    NormalizedBlinnPhongSpecular<R, N, V, P>
+{
     /// The normalization this lobe was built with.
     #[inline]
     #[must_use]
@@ -416,13 +447,13 @@ pub struct CoupledLambert<R, const N: usize> {
     weight: [R; N],
 }
 
-impl<R: Real, const N: usize> CoupledLambert<R, N> {
+impl<S: Scalar, const N: usize> CoupledLambert<S, N> {
     /// Diffuse `rd`, specular intensity `rs` and Fresnel `f0`, all in `[0, 1]`.
     ///
     /// # Errors
     /// Names `"rd"`, `"rs"` or `"f0"`.
     #[inline]
-    pub fn new(rd: [R::Scalar; N], rs: R::Scalar, f0: [R::Scalar; N]) -> Result<Self, Error> {
+    pub fn new(rd: [S; N], rs: S, f0: [S; N]) -> Result<Self, Error> {
         let rd = unit_channels("rd", rd)?;
         let rs: f64 = crate::error::unit_interval("rs", rs)?.into();
         let f0 = unit_channels("f0", f0)?;
@@ -489,7 +520,7 @@ impl<R: Real, const N: usize> Brdf<R, N> for CoupledLambert<R, N> {
 ///
 /// ```
 /// use brdf::{Vec3, models::{Brdf, Normalization, NormalizedBlinnPhong, CosThetaI}};
-/// let m = NormalizedBlinnPhong::<f32, 3, CosThetaI>::new(
+/// let m = NormalizedBlinnPhong::<f32, 3>::new(
 ///     [0.8, 0.5, 0.3], 0.5, [0.04; 3], 64.0, Normalization::TriAceExact)?;
 /// let n = Vec3::new(0.0, 0.0, 1.0);
 /// let f = m.eval(n, n);
@@ -507,24 +538,50 @@ pub struct NormalizedBlinnPhong<R, const N: usize, V = CosThetaI, P = ExactPow> 
     pub specular: NormalizedBlinnPhongSpecular<R, N, V, P>,
 }
 
-impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> NormalizedBlinnPhong<R, N, V, P> {
+impl<S: Scalar, const N: usize> NormalizedBlinnPhong<S, N> {
     /// The seed's model with diffuse `rd`, specular intensity `rs`, Fresnel `f0` (all in
-    /// `[0, 1]`) and exponent `shininess ∈ [0, ∞)`.
+    /// `[0, 1]`) and exponent `shininess ∈ [0, ∞)`, with the seed's [`CosThetaI`]
+    /// denominator and [`ExactPow`]; choose others with [`Self::with_denominator`] and
+    /// [`Self::with_pow`].
     ///
     /// # Errors
     /// Names `"rd"`, `"rs"`, `"f0"` or `"shininess"`.
     #[inline]
     pub fn new(
-        rd: [R::Scalar; N],
-        rs: R::Scalar,
-        f0: [R::Scalar; N],
-        shininess: R::Scalar,
+        rd: [S; N],
+        rs: S,
+        f0: [S; N],
+        shininess: S,
         normalization: Normalization,
     ) -> Result<Self, Error> {
         Ok(Self {
             diffuse: CoupledLambert::new(rd, rs, f0)?,
             specular: NormalizedBlinnPhongSpecular::new(rs, f0, shininess, normalization)?,
         })
+    }
+}
+
+impl<R, const N: usize, V, P> NormalizedBlinnPhong<R, N, V, P> {
+    /// The same model with the specular divided by another [`SpecularDenominator`] (e.g.
+    /// [`MaxCos`]). Costs nothing.
+    #[inline]
+    #[must_use]
+    pub fn with_denominator<V2: SpecularDenominator>(self) -> NormalizedBlinnPhong<R, N, V2, P> {
+        NormalizedBlinnPhong {
+            diffuse: self.diffuse,
+            specular: self.specular.with_denominator(),
+        }
+    }
+
+    /// The same model with the specular power computed by another [`PowFn`] (e.g.
+    /// [`crate::fast::FastPow`]). Costs nothing.
+    #[inline]
+    #[must_use]
+    pub fn with_pow<P2: PowFn>(self) -> NormalizedBlinnPhong<R, N, V, P2> {
+        NormalizedBlinnPhong {
+            diffuse: self.diffuse,
+            specular: self.specular.with_pow(),
+        }
     }
 }
 

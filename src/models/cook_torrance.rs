@@ -84,8 +84,8 @@ impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>, S: SqrtFn> CookTorrance<R, D, F, G
     /// use brdf::{Brdf, Vec3, fast::NewtonSqrt, fresnel::Schlick, masking::SmithHeightCorrelated};
     /// use brdf::{models::CookTorrance, ndf::GgxIsotropic};
     /// let exact = CookTorrance::new(
-    ///     GgxIsotropic::<f32>::new(0.3).unwrap(),
-    ///     Schlick::<f32, 1>::new([0.04]).unwrap(),
+    ///     GgxIsotropic::new(0.3_f32).unwrap(),
+    ///     Schlick::new([0.04_f32]).unwrap(),
     ///     SmithHeightCorrelated,
     /// );
     /// let fast = exact.with_sqrt::<NewtonSqrt<2>>();

@@ -66,7 +66,7 @@ pub(crate) fn wallis(p: f64) -> f64 {
 ///
 /// ```
 /// use brdf::{Vec3, models::{Brdf, KajiyaKay}};
-/// let hair = KajiyaKay::<f32, 1>::new([0.0], [1.0], 50.0, [1.0, 0.0, 0.0])?;
+/// let hair = KajiyaKay::new([0.0_f32], [1.0], 50.0, [1.0, 0.0, 0.0])?;
 /// // Peak on the cone t·wo = −t·wi: here the mirror direction about the card normal.
 /// let (wi, wo) = (Vec3::new(0.6, 0.0, 0.8), Vec3::new(-0.6, 0.0, 0.8));
 /// assert!((hair.eval(wi, wo)[0] - 1.0).abs() < 1e-6);
@@ -81,12 +81,12 @@ pub struct KajiyaKay<R, const N: usize> {
     normalized: bool,
 }
 
-impl<R: Real, const N: usize> KajiyaKay<R, N> {
+impl<S: Scalar, const N: usize> KajiyaKay<S, N> {
     fn build(
-        kd: [R::Scalar; N],
-        ks: [R::Scalar; N],
-        p: R::Scalar,
-        tangent: [R::Scalar; 3],
+        kd: [S; N],
+        ks: [S; N],
+        p: S,
+        tangent: [S; 3],
         normalized: bool,
     ) -> Result<Self, Error> {
         let kd = unit_channels("kd", kd)?;
@@ -111,13 +111,13 @@ impl<R: Real, const N: usize> KajiyaKay<R, N> {
         };
         Ok(Self {
             t: Vec3::new(
-                R::from_f64(t[0] / len),
-                R::from_f64(t[1] / len),
-                R::from_f64(t[2] / len),
+                S::from_f64(t[0] / len),
+                S::from_f64(t[1] / len),
+                S::from_f64(t[2] / len),
             ),
             kd_over_pi: splat_channels(kd.map(|k| k * core::f64::consts::FRAC_1_PI)),
             ks_c: splat_channels(ks.map(|k| k * c)),
-            p: R::from_f64(p),
+            p: S::from_f64(p),
             normalized,
         })
     }
@@ -129,12 +129,7 @@ impl<R: Real, const N: usize> KajiyaKay<R, N> {
     /// # Errors
     /// Names `"kd"`, `"ks"`, `"p"` or `"tangent"` (non-finite or zero length).
     #[inline]
-    pub fn new(
-        kd: [R::Scalar; N],
-        ks: [R::Scalar; N],
-        p: R::Scalar,
-        tangent: [R::Scalar; 3],
-    ) -> Result<Self, Error> {
+    pub fn new(kd: [S; N], ks: [S; N], p: S, tangent: [S; 3]) -> Result<Self, Error> {
         Self::build(kd, ks, p, tangent, false)
     }
 
@@ -143,12 +138,7 @@ impl<R: Real, const N: usize> KajiyaKay<R, N> {
     /// # Errors
     /// As [`KajiyaKay::new`].
     #[inline]
-    pub fn normalized(
-        kd: [R::Scalar; N],
-        ks: [R::Scalar; N],
-        p: R::Scalar,
-        tangent: [R::Scalar; 3],
-    ) -> Result<Self, Error> {
+    pub fn normalized(kd: [S; N], ks: [S; N], p: S, tangent: [S; 3]) -> Result<Self, Error> {
         Self::build(kd, ks, p, tangent, true)
     }
 }

@@ -80,7 +80,7 @@ struct Lobe<R, const N: usize> {
 /// // A normalized Phong lobe: (n + 2)/(2π) (mirror(wi)·wo)^n.
 /// let n = 20.0;
 /// let lobe = LafortuneLobe { cx: -1.0, cy: -1.0, cz: 1.0, n, rho: [(n + 2.0) / (2.0 * core::f64::consts::PI)] };
-/// let m = Lafortune::<f64, 1, 1>::new([0.0], [lobe])?;
+/// let m = Lafortune::new([0.0_f64], [lobe])?;
 /// assert!(m.energy_bound()[0] <= 1.0 + 1e-12);
 /// let wi = Vec3::new(0.6, 0.0, 0.8);
 /// let mirror = Vec3::new(-0.6, 0.0, 0.8);
@@ -94,29 +94,25 @@ pub struct Lafortune<R, const N: usize, const K: usize> {
     bound: [f64; N],
 }
 
-impl<R: Real, const N: usize, const K: usize> Lafortune<R, N, K> {
+impl<S: Scalar, const N: usize, const K: usize> Lafortune<S, N, K> {
     /// Lambertian `rho_d ∈ [0, 1]` per channel plus `K` lobes.
     ///
     /// # Errors
     /// Names `"rho_d"`, `"cx"`, `"cy"`, `"cz"`, `"n"` or `"rho"` (a lobe whose peak
     /// `ρ Cmax^n` exceeds `1e30` is rejected naming `"n"`).
-    pub fn new(
-        rho_d: [R::Scalar; N],
-        lobes: [LafortuneLobe<R::Scalar, N>; K],
-    ) -> Result<Self, Error> {
+    pub fn new(rho_d: [S; N], lobes: [LafortuneLobe<S, N>; K]) -> Result<Self, Error> {
         let rho_d = unit_channels("rho_d", rho_d)?;
         let mut bound = rho_d;
         let mut out = [Lobe {
-            cx: R::zero(),
-            cy: R::zero(),
-            cz: R::zero(),
-            n: R::zero(),
-            rho: [R::zero(); N],
+            cx: S::zero(),
+            cy: S::zero(),
+            cz: S::zero(),
+            n: S::zero(),
+            rho: [S::zero(); N],
         }; K];
         for (o, l) in out.iter_mut().zip(lobes) {
-            let fin = |p, v: R::Scalar| {
-                crate::error::check(p, v, "(−∞, ∞)", |_| true).map(Into::<f64>::into)
-            };
+            let fin =
+                |p, v: S| crate::error::check(p, v, "(−∞, ∞)", |_| true).map(Into::<f64>::into);
             let (cx, cy, cz) = (fin("cx", l.cx)?, fin("cy", l.cy)?, fin("cz", l.cz)?);
             let n: f64 = crate::error::non_negative("n", l.n)?.into();
             let mut rho = [0.0; N];
@@ -137,10 +133,10 @@ impl<R: Real, const N: usize, const K: usize> Lafortune<R, N, K> {
                 *b += r * cmax_n * 2.0 * core::f64::consts::PI / (n + 2.0);
             }
             *o = Lobe {
-                cx: R::from_f64(cx),
-                cy: R::from_f64(cy),
-                cz: R::from_f64(cz),
-                n: R::from_f64(n),
+                cx: S::from_f64(cx),
+                cy: S::from_f64(cy),
+                cz: S::from_f64(cz),
+                n: S::from_f64(n),
                 rho: splat_channels(rho),
             };
         }
@@ -150,7 +146,9 @@ impl<R: Real, const N: usize, const K: usize> Lafortune<R, N, K> {
             bound,
         })
     }
+}
 
+impl<R: Real, const N: usize, const K: usize> Lafortune<R, N, K> {
     /// The sufficient energy bound `B = ρd + Σⱼ ρⱼ Cmaxⱼ^nⱼ 2π/(nⱼ + 2)` per channel
     /// (albedo ≤ `B` for every direction).
     #[inline]

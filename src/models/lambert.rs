@@ -21,7 +21,7 @@ use crate::{Error, Real, Vec3};
 ///
 /// ```
 /// use brdf::{Vec3, models::{Brdf, Lambert}};
-/// let m = Lambert::<f32, 3>::new([0.5, 0.25, 1.0])?;
+/// let m = Lambert::new([0.5_f32, 0.25, 1.0])?;
 /// let up = Vec3::new(0.0, 0.0, 1.0);
 /// let f = m.eval(up, Vec3::new(0.6, 0.0, 0.8));
 /// assert!((f[0] - 0.5 / core::f32::consts::PI).abs() < 1e-7);
@@ -33,13 +33,13 @@ pub struct Lambert<R, const N: usize> {
     albedo_over_pi: [R; N],
 }
 
-impl<R: Real, const N: usize> Lambert<R, N> {
+impl<S: Scalar, const N: usize> Lambert<S, N> {
     /// Lambertian reflection of `albedo ∈ [0, 1]` per channel.
     ///
     /// # Errors
     /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming `"albedo"`.
     #[inline]
-    pub fn new(albedo: [R::Scalar; N]) -> Result<Self, Error> {
+    pub fn new(albedo: [S; N]) -> Result<Self, Error> {
         let a = unit_channels("albedo", albedo)?;
         Ok(Self {
             albedo_over_pi: splat_channels(a.map(|a| a * core::f64::consts::FRAC_1_PI)),

@@ -20,7 +20,7 @@ use crate::{Real, Vec3};
 ///
 /// ```
 /// use brdf::{Vec3, models::{Brdf, Lambert, Sum, OrenNayar}};
-/// let m = Sum::new(Lambert::<f32, 1>::new([0.25])?, OrenNayar::<f32, 1>::new([0.25], 0.0)?);
+/// let m = Sum::new(Lambert::new([0.25_f32])?, OrenNayar::new([0.25_f32], 0.0)?);
 /// let n = Vec3::new(0.0, 0.0, 1.0);
 /// assert!((m.eval(n, n)[0] - 0.5 / core::f32::consts::PI).abs() < 1e-7);
 /// # Ok::<(), brdf::Error>(())

@@ -38,8 +38,8 @@ use crate::{Error, Real, Vec3};
 ///
 /// ```
 /// use brdf::{Vec3, models::{Brdf, OrenNayar, Lambert}};
-/// let smooth = OrenNayar::<f32, 1>::new([0.7], 0.0)?;
-/// let lambert = Lambert::<f32, 1>::new([0.7])?;
+/// let smooth = OrenNayar::new([0.7_f32], 0.0)?;
+/// let lambert = Lambert::new([0.7_f32])?;
 /// let (wi, wo) = (Vec3::new(0.6, 0.0, 0.8), Vec3::new(-0.28, 0.96, 0.0001));
 /// assert_eq!(smooth.eval(wi, wo), lambert.eval(wi, wo));
 /// # Ok::<(), brdf::Error>(())
@@ -50,13 +50,13 @@ pub struct OrenNayar<R, const N: usize> {
     b: [R; N],
 }
 
-impl<R: Real, const N: usize> OrenNayar<R, N> {
+impl<S: Scalar, const N: usize> OrenNayar<S, N> {
     /// Albedo `rho ∈ [0, 1]` per channel and roughness `sigma ∈ [0, ∞)` (radians).
     ///
     /// # Errors
     /// Names `"rho"` or `"sigma"`.
     #[inline]
-    pub fn new(rho: [R::Scalar; N], sigma: R::Scalar) -> Result<Self, Error> {
+    pub fn new(rho: [S; N], sigma: S) -> Result<Self, Error> {
         let rho = unit_channels("rho", rho)?;
         let s: f64 = crate::error::non_negative("sigma", sigma)?.into();
         let s2 = s * s;
@@ -133,7 +133,7 @@ impl<R: Real, const N: usize> Brdf<R, N> for OrenNayar<R, N> {
 ///
 /// ```
 /// use brdf::{Vec3, models::{Brdf, OrenNayarFujii}};
-/// let m = OrenNayarFujii::<f64, 1>::new([1.0], 1.0)?;
+/// let m = OrenNayarFujii::new([1.0_f64], 1.0)?;
 /// let n = Vec3::new(0.0, 0.0, 1.0);
 /// let a = 1.0 / (1.0 + (0.5 - 2.0 / (3.0 * core::f64::consts::PI)));
 /// // Normal view: s = 0 for every wi, so f = ρ A / π.
@@ -146,13 +146,13 @@ pub struct OrenNayarFujii<R, const N: usize> {
     b: [R; N],
 }
 
-impl<R: Real, const N: usize> OrenNayarFujii<R, N> {
+impl<S: Scalar, const N: usize> OrenNayarFujii<S, N> {
     /// Albedo `rho ∈ [0, 1]` per channel and roughness `sigma ∈ [0, 1]`.
     ///
     /// # Errors
     /// Names `"rho"` or `"sigma"`.
     #[inline]
-    pub fn new(rho: [R::Scalar; N], sigma: R::Scalar) -> Result<Self, Error> {
+    pub fn new(rho: [S; N], sigma: S) -> Result<Self, Error> {
         let rho = unit_channels("rho", rho)?;
         let s: f64 = crate::error::unit_interval("sigma", sigma)?.into();
         let a = 1.0 / (1.0 + (0.5 - 2.0 / (3.0 * core::f64::consts::PI)) * s);

@@ -41,7 +41,7 @@ use crate::{Error, Real, Vec3};
 ///
 /// ```
 /// use brdf::{Vec3, models::{Brdf, ShirleyDiffuse}};
-/// let m = ShirleyDiffuse::<f64, 1>::new([1.0], [0.04])?;
+/// let m = ShirleyDiffuse::new([1.0_f64], [0.04])?;
 /// let n = Vec3::new(0.0, 0.0, 1.0);
 /// let f = m.eval(n, n)[0];
 /// assert!((f - 21.0 / (20.0 * core::f64::consts::PI) * 0.96).abs() < 1e-15);
@@ -52,14 +52,14 @@ pub struct ShirleyDiffuse<R, const N: usize> {
     k: [R; N],
 }
 
-impl<R: Real, const N: usize> ShirleyDiffuse<R, N> {
+impl<S: Scalar, const N: usize> ShirleyDiffuse<S, N> {
     /// Diffuse albedo `rho_d` and the coat's normal-incidence reflectance `r0`, per
     /// channel in `[0, 1]`.
     ///
     /// # Errors
     /// Names `"rho_d"` or `"r0"`.
     #[inline]
-    pub fn new(rho_d: [R::Scalar; N], r0: [R::Scalar; N]) -> Result<Self, Error> {
+    pub fn new(rho_d: [S; N], r0: [S; N]) -> Result<Self, Error> {
         let rho_d = unit_channels("rho_d", rho_d)?;
         let r0 = unit_channels("r0", r0)?;
         let c = 21.0 / (20.0 * core::f64::consts::PI);
