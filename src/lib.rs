@@ -57,12 +57,14 @@ extern crate std;
 #[cfg(not(any(feature = "std", feature = "libm")))]
 compile_error!("brdf needs a math backend: enable the `std` (default) or the `libm` feature.");
 
+mod compare;
 mod math;
 
 pub mod analysis;
 pub mod batch;
 pub mod error;
 pub mod fast;
+pub mod frame;
 pub mod fresnel;
 pub mod ior;
 pub mod masking;
@@ -75,6 +77,7 @@ pub mod real;
 pub mod vec3;
 
 pub use error::Error;
+pub use frame::Frame;
 pub use models::Brdf;
 pub use real::{Real, Scalar, f32x4, f32x8, f32x16, f64x4};
 pub use vec3::Vec3;

@@ -5,8 +5,11 @@
 //! functions below are the spherical-coordinate helpers of pbrt-v4's `vecmath.h`, written for
 //! lanes.
 //!
-//! glam types convert in at the API edge: `Vec3<f32>: From<glam::Vec3>`,
-//! `Vec3<f64>: From<glam::DVec3>` and `Vec3<f32x8>: From<[glam::Vec3; 8]>`.
+//! glam types and arrays convert in at the API edge: `Vec3<f32>: From<glam::Vec3>`,
+//! `Vec3<f64>: From<glam::DVec3>`, `Vec3<f32x8>: From<[glam::Vec3; 8]>` and
+//! `Vec3<R>: From<[R; 3]>`. These conversions copy components; they do not change frames:
+//! a world-space vector goes through [`crate::frame::Frame::to_local`] (see the y-up trap
+//! in the [`frame`](crate::frame) docs).
 
 use crate::Scalar;
 use crate::real::{Real, Splat, f32x4, f32x8, f32x16, splat_scalar};
@@ -74,6 +77,17 @@ impl<R: Real> Vec3<R> {
         let ok = len2.gt(R::zero());
         let inv = R::select(ok, len2.max(R::from_f64(1e-300)).sqrt().recip(), R::zero());
         self.scale(inv)
+    }
+
+    /// Cross product `self × o` (right-handed: `x × y = z`).
+    #[inline(always)]
+    #[must_use]
+    pub fn cross(self, o: Self) -> Self {
+        Self::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
     }
 
     /// Mirror direction of `self` about `n`: `2 (self·n) n − self`.
@@ -158,6 +172,22 @@ pub fn tan2_theta<R: Real>(w: Vec3<R>) -> R {
 #[must_use]
 pub fn half_vector<R: Real>(wi: Vec3<R>, wo: Vec3<R>) -> Vec3<R> {
     wi.add(wo).normalize_or_zero()
+}
+
+/// `[x, y, z]` → `Vec3 { x, y, z }`.
+impl<R> From<[R; 3]> for Vec3<R> {
+    #[inline]
+    fn from([x, y, z]: [R; 3]) -> Self {
+        Self { x, y, z }
+    }
+}
+
+/// `Vec3 { x, y, z }` → `[x, y, z]`.
+impl<R> From<Vec3<R>> for [R; 3] {
+    #[inline]
+    fn from(v: Vec3<R>) -> Self {
+        [v.x, v.y, v.z]
+    }
 }
 
 impl From<glam::Vec3> for Vec3<f32> {
