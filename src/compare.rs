@@ -162,10 +162,10 @@ mod tests {
     #[test]
     fn vec3_compares_every_component_of_every_lane() {
         let a = Vec3::new(1.0_f32, 2.0, 3.0);
-        let b = Vec3::new(1.0_f32, 2.0, 3.0 * (1.0 + 2.0 * f32::EPSILON));
+        let b = Vec3::new(1.0_f32, 2.0, f32::from_bits(3.0f32.to_bits() + 2)); // 2 ULP, 1.33 ε rel
         assert!(ulps_eq!(a, b, max_ulps = 2));
         assert!(!ulps_eq!(a, b, max_ulps = 1));
-        assert!(relative_eq!(a, b, max_relative = 3.0 * f32::EPSILON));
+        assert!(relative_eq!(a, b, max_relative = 1.5 * f32::EPSILON));
         assert!(!relative_eq!(a, b, max_relative = f32::EPSILON));
         assert!(abs_diff_eq!(a, b, epsilon = 1e-6));
         // One lane of one component off: the whole comparison fails.
