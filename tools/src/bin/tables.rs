@@ -1,7 +1,7 @@
 //! The seed talk's tables, reproduced by the crate.
 //!
 //! ```sh
-//! cargo run --release --example tables
+//! cargo run --release -p brdf-tools --bin tables
 //! ```
 //!
 //! Prints, as Markdown tables: every preset's normal-incidence reflectance F0 (with the

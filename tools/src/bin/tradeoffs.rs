@@ -1,7 +1,7 @@
 //! Speed versus accuracy of every approximation in the crate, measured in one run.
 //!
 //! ```sh
-//! cargo run --release --example tradeoffs
+//! cargo run --release -p brdf-tools --bin tradeoffs
 //! ```
 //!
 //! Prints Markdown tables: for each approximation, its maximum absolute and relative error
@@ -1574,7 +1574,7 @@ fn print_table(t: &Table) -> usize {
 
 fn main() {
     let start = Instant::now();
-    println!("## Speed versus accuracy (`cargo run --release --example tradeoffs`)\n");
+    println!("## Speed versus accuracy (`cargo run --release -p brdf-tools --bin tradeoffs`)\n");
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
     let load = std::fs::read_to_string("/proc/loadavg")
         .ok()

@@ -1,15 +1,12 @@
 //! Writes PNG plots of the seed talk's graphs and of every model's behaviour.
 //!
 //! ```text
-//! cargo run --release --example plots                 # target/brdf-images/plots/
-//! cargo run --release --example plots -- --out DIR
+//! cargo run --release -p brdf-tools --bin plots   # target/brdf-images/plots/
+//! cargo run --release -p brdf-tools --bin plots -- --out DIR
 //! ```
 //!
 //! Plots are drawn by `plotters` as SVG and rasterized by `resvg` with the DejaVu font
 //! embedded by the `dejavu` crate: no system fonts, no fontconfig.
-
-#[path = "support/mod.rs"]
-mod support;
 
 use std::path::{Path, PathBuf};
 
@@ -34,7 +31,7 @@ Writes PNG plots of Fresnel reflectance, normalization factors, Schlick's error,
 albedo and BRDF lobes.
 
 USAGE:
-    cargo run --release --example plots [-- --out DIR]
+    cargo run --release -p brdf-tools --bin plots [-- --out DIR]
 
 OPTIONS:
     --out DIR    output folder (default: target/brdf-images/plots/)
@@ -217,8 +214,11 @@ fn figure(
         draw(&root)?;
         root.present()?;
     }
-    let pixmap = support::rasterize(&svg, SCALE / K as f32);
-    Ok(support::save_png(&pixmap, &dir.join(format!("{name}.png"))))
+    let pixmap = brdf_tools::rasterize(&svg, SCALE / K as f32);
+    Ok(brdf_tools::save_png(
+        &pixmap,
+        &dir.join(format!("{name}.png")),
+    ))
 }
 
 /// The y range spanned by `curves`, with a margin.
@@ -554,7 +554,7 @@ fn schlick_error(dir: &Path) -> Res<PathBuf> {
 type Model = Box<dyn Brdf<f64, 3>>;
 
 fn boxed<B: Brdf<f64, 3> + 'static>(m: Result<B, brdf::Error>) -> Model {
-    Box::new(m.unwrap_or_else(|e| panic!("example parameters rejected: {e}")))
+    Box::new(m.unwrap_or_else(|e| panic!("built-in parameters rejected: {e}")))
 }
 
 fn ggx_white(alpha: f64) -> Model {
@@ -905,11 +905,11 @@ fn lobes(dir: &Path) -> Res<PathBuf> {
 }
 
 fn main() {
-    let args = support::Args::parse(&["--out"], &[], USAGE);
+    let args = brdf_tools::Args::parse(&["--out"], &[], USAGE);
     let out = args
         .value("--out")
         .map(PathBuf::from)
-        .unwrap_or_else(|| support::default_out_dir().join("plots"));
+        .unwrap_or_else(|| brdf_tools::default_out_dir().join("plots"));
     let start = std::time::Instant::now();
     let jobs: [(&str, PlotFn); 6] = [
         ("Fresnel reflectance of the presets", fresnel_materials),

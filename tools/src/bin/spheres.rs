@@ -1,19 +1,17 @@
 //! Renders grids of lit spheres with the crate's BRDFs and writes them as PNG.
 //!
 //! ```text
-//! cargo run --release --example spheres                      # all grids, target/brdf-images/
-//! cargo run --release --example spheres -- --out DIR --size 96
-//! cargo run --release --features serde --example spheres -- --material docs/materials/gold.toml
+//! cargo run --release -p brdf-tools --bin spheres        # all grids, target/brdf-images/
+//! cargo run --release -p brdf-tools --bin spheres -- --out DIR --size 96
+//! cargo run --release -p brdf-tools --features serde --bin spheres -- \
+//!     --material docs/materials/gold.toml
 //! ```
 //!
 //! Every sphere is shaded in linear space through `brdf::batch::eval` (run-time dispatch
 //! to AVX2/AVX-512): one directional light plus a constant environment whose reflection is
 //! `L_env · ρ(wo)`, with the directional albedo `ρ` from `brdf::analysis` (see
-//! `support/render.rs`). Display encoding: exposure, then the ACES filmic fit of Narkowicz
+//! `brdf_tools::render`). Display encoding: exposure, then the ACES filmic fit of Narkowicz
 //! (2016) per channel, then the exact piecewise sRGB OETF, 8 bits.
-
-#[path = "support/mod.rs"]
-mod support;
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -29,14 +27,14 @@ use brdf::models::{
     NormalizedBlinnPhongSpecular, OrenNayar, ShirleyDiffuse, Sum, Ward,
 };
 use brdf::ndf::{Beckmann, Ggx};
-use support::Display;
-use support::render::{self, AlbedoTable, Cell, Grid, Image, Lighting, Row, Tangents};
+use brdf_tools::Display;
+use brdf_tools::render::{self, AlbedoTable, Cell, Grid, Image, Lighting, Row, Tangents};
 
 const USAGE: &str = "\
 Renders grids of lit spheres with the brdf crate's models (PNG, sRGB).
 
 USAGE:
-    cargo run --release --example spheres [-- OPTIONS]
+    cargo run --release -p brdf-tools --bin spheres [-- OPTIONS]
 
 OPTIONS:
     --out DIR         output folder (default: target/brdf-images/)
@@ -82,8 +80,8 @@ impl Ctx {
     where
         B: brdf::batch::BatchBrdf<3> + Send + 'static,
     {
-        // The parameters below are fixed and valid; an error here is a bug in this example.
-        let model = model.unwrap_or_else(|e| panic!("example material rejected: {e}"));
+        // The parameters below are fixed and valid; an error here is a bug in this program.
+        let model = model.unwrap_or_else(|e| panic!("built-in material rejected: {e}"));
         let (lighting, size) = (self.lighting, self.size);
         Box::new(move || {
             let table = AlbedoTable::new(&model, anisotropic);
@@ -516,16 +514,16 @@ fn material(ctx: Ctx, path: &Path) -> Result<Spec, String> {
 #[cfg(not(feature = "serde"))]
 fn material(_ctx: Ctx, _path: &Path) -> Result<Spec, String> {
     Err("--material needs the `serde` feature: \
-         cargo run --release --features serde --example spheres -- --material FILE"
+         cargo run --release -p brdf-tools --features serde --bin spheres -- --material FILE"
         .into())
 }
 
 fn main() {
-    let args = support::Args::parse(&["--out", "--size", "--only", "--material"], &[], USAGE);
+    let args = brdf_tools::Args::parse(&["--out", "--size", "--only", "--material"], &[], USAGE);
     let out = args
         .value("--out")
         .map(PathBuf::from)
-        .unwrap_or_else(support::default_out_dir);
+        .unwrap_or_else(brdf_tools::default_out_dir);
     let size: usize = match args.value("--size").map(str::parse) {
         None => 128,
         Some(Ok(s)) if (16..=1024).contains(&s) => s,
@@ -653,7 +651,10 @@ fn render_all(specs: Vec<Spec>, out: &Path) -> Vec<PathBuf> {
             grid.rows.push(Row { label, cells });
         }
         let pixmap = render::compose(&grid, &Display { exposure }, lighting.env);
-        written.push(support::save_png(&pixmap, &out.join(format!("{file}.png"))));
+        written.push(brdf_tools::save_png(
+            &pixmap,
+            &out.join(format!("{file}.png")),
+        ));
     }
     written
 }

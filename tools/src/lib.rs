@@ -1,10 +1,11 @@
-//! Code shared by the examples: display encoding (tone mapping, sRGB), SVG rasterization
-//! with an embedded font, PNG output and command-line parsing.
+//! Code shared by the programs of `brdf-tools` (`src/bin/`): display encoding (tone
+//! mapping, sRGB), SVG rasterization with an embedded font, PNG output, command-line
+//! parsing, and the sphere renderer ([`render`]).
 //!
-//! Included by each example with `#[path = "support/mod.rs"] mod support;`.
-
-// Each example uses a different subset of these helpers.
-#![allow(dead_code)]
+//! The programs live in this workspace member rather than in `brdf`'s `examples/` so that
+//! `brdf`'s test build does not compile their dependencies (plotters, resvg, the DejaVu
+//! font). Run them from the repository root, for example
+//! `cargo run --release -p brdf-tools --bin spheres`.
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
@@ -78,7 +79,7 @@ impl Display {
 // ---------------------------------------------------------------------------------------------
 
 /// A font database holding DejaVu Sans (regular and bold, embedded by the `dejavu` crate),
-/// registered as the generic `sans-serif`, `serif` and `monospace` families: the examples
+/// registered as the generic `sans-serif`, `serif` and `monospace` families: the programs
 /// need no system fonts and no fontconfig.
 pub fn fonts() -> Arc<usvg::fontdb::Database> {
     static DB: OnceLock<Arc<usvg::fontdb::Database>> = OnceLock::new();
@@ -98,7 +99,7 @@ pub fn fonts() -> Arc<usvg::fontdb::Database> {
 /// Parses an SVG document with the embedded fonts.
 ///
 /// # Panics
-/// If the SVG does not parse (a bug in the example that wrote it).
+/// If the SVG does not parse (a bug in the program that wrote it).
 #[must_use]
 pub fn parse_svg(svg: &str) -> usvg::Tree {
     let opt = usvg::Options {
@@ -106,7 +107,7 @@ pub fn parse_svg(svg: &str) -> usvg::Tree {
         fontdb: fonts(),
         ..usvg::Options::default()
     };
-    usvg::Tree::from_str(svg, &opt).unwrap_or_else(|e| panic!("example wrote an invalid SVG: {e}"))
+    usvg::Tree::from_str(svg, &opt).unwrap_or_else(|e| panic!("invalid SVG: {e}"))
 }
 
 /// Rasterizes an SVG document at `scale` (1 = its own pixel size) on a white background.
@@ -147,7 +148,7 @@ pub fn xml_escape(s: &str) -> String {
 /// Writes `pixmap` as PNG to `path`, creating the parent folder, and returns the path.
 ///
 /// # Panics
-/// If the file cannot be written (the example reports it and stops).
+/// If the file cannot be written (the program reports it and stops).
 pub fn save_png(pixmap: &tiny_skia::Pixmap, path: &Path) -> PathBuf {
     if let Some(parent) = path.parent() {
         std::fs::create_dir_all(parent)
@@ -163,13 +164,17 @@ pub fn save_png(pixmap: &tiny_skia::Pixmap, path: &Path) -> PathBuf {
 // Command line
 // ---------------------------------------------------------------------------------------------
 
-/// The output folder: `--out DIR` if given, else `target/brdf-images/` of this workspace
-/// (`CARGO_TARGET_DIR` is honoured).
+/// The default output folder: `target/brdf-images/` of the workspace (the repository root,
+/// one level above this package; `CARGO_TARGET_DIR` is honoured).
 #[must_use]
 pub fn default_out_dir() -> PathBuf {
     let target = std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("target"));
+        .unwrap_or_else(|| {
+            // This package is tools/ inside the workspace, whose target/ is at the root.
+            let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent();
+            root.unwrap_or(Path::new(".")).join("target")
+        });
     target.join("brdf-images")
 }
 
