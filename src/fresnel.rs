@@ -1166,3 +1166,84 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for NoFresnel {
         [R::one(); N]
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// A Fresnel term chosen at run time
+// ---------------------------------------------------------------------------------------
+
+/// An RGB Fresnel term chosen at run time, for a model whose parts come from a file or a
+/// renderer's material table ([`crate::material::Material`]).
+///
+/// It implements [`FresnelTerm<R, 3>`] by forwarding **every** method
+/// ([`FresnelTerm::eval_cos2`] included) to the wrapped term, so a model built on
+/// `AnyFresnel` evaluates exactly the operations, hence the bits, of the same model built on
+/// the wrapped type (tested in `tests/material.rs`). The price is one branch per call on
+/// the variant, a per-material constant.
+///
+/// Build one with `From`: `AnyFresnel::from(Dielectric::<f32>::new(1.5)?)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AnyFresnel<R> {
+    /// The exact [`Dielectric`] (the same IOR for every channel).
+    Dielectric(Dielectric<R>),
+    /// The exact [`Conductor`], a complex IOR per channel.
+    Conductor(Conductor<R, 3>),
+    /// [`Schlick`]'s approximation with `f0` (and `f90`) per channel.
+    Schlick(Schlick<R, 3>),
+    /// Hoffman's [`F82Tint`] per channel.
+    F82Tint(F82Tint<R, 3>),
+    /// [`NoFresnel`]: `F = 1`.
+    NoFresnel(NoFresnel),
+}
+
+/// `on_any_fresnel!(self, f => f.eval(c))`: the expression on the term an [`AnyFresnel`]
+/// holds.
+macro_rules! on_any_fresnel {
+    ($any:expr, $f:ident => $e:expr) => {
+        match $any {
+            AnyFresnel::Dielectric($f) => $e,
+            AnyFresnel::Conductor($f) => $e,
+            AnyFresnel::Schlick($f) => $e,
+            AnyFresnel::F82Tint($f) => $e,
+            AnyFresnel::NoFresnel($f) => $e,
+        }
+    };
+}
+
+/// `From` each wrapped term.
+macro_rules! any_fresnel_from {
+    ($($v:ident($t:ty)),*) => {
+        $(impl<R> From<$t> for AnyFresnel<R> {
+            #[inline]
+            fn from(f: $t) -> Self {
+                AnyFresnel::$v(f)
+            }
+        })*
+    };
+}
+any_fresnel_from!(
+    Dielectric(Dielectric<R>),
+    Conductor(Conductor<R, 3>),
+    Schlick(Schlick<R, 3>),
+    F82Tint(F82Tint<R, 3>),
+    NoFresnel(NoFresnel)
+);
+
+impl<S: Scalar> Splat for AnyFresnel<S> {
+    type On<L: Real> = AnyFresnel<L>;
+    #[inline]
+    fn splat<L: Real>(&self) -> AnyFresnel<L> {
+        on_any_fresnel!(self, f => AnyFresnel::from(f.splat::<L>()))
+    }
+}
+
+impl<R: Real> FresnelTerm<R, 3> for AnyFresnel<R> {
+    #[inline(always)]
+    fn eval(&self, cos_theta_d: R) -> [R; 3] {
+        on_any_fresnel!(self, f => f.eval(cos_theta_d))
+    }
+
+    #[inline(always)]
+    fn eval_cos2(&self, cos_theta_d: R, cos2_theta_d: R) -> [R; 3] {
+        on_any_fresnel!(self, f => f.eval_cos2(cos_theta_d, cos2_theta_d))
+    }
+}

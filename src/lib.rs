@@ -39,6 +39,10 @@
 //! * `std` (default): math from the standard library.
 //! * `libm`: math from [`libm`](https://docs.rs/libm); the crate is `#![no_std]` when `std`
 //!   is off, and one of the two must be enabled.
+//! * `alloc`: the compositions `Sum` and `Layered` of the runtime [`material::Material`]
+//!   (they hold other materials); the crate stays `no_std`.
+//! * `serde`: material descriptions that load from files (`material::MaterialDesc`,
+//!   validated on load); enables `alloc`.
 //!
 //! ## References
 //!
@@ -54,6 +58,9 @@
 #[cfg(all(test, not(feature = "std")))]
 extern crate std;
 
+#[cfg(feature = "alloc")]
+extern crate alloc;
+
 #[cfg(not(any(feature = "std", feature = "libm")))]
 compile_error!("brdf needs a math backend: enable the `std` (default) or the `libm` feature.");
 
@@ -68,7 +75,6 @@ pub mod frame;
 pub mod fresnel;
 pub mod ior;
 pub mod masking;
-#[cfg(feature = "serde")]
 pub mod material;
 pub mod models;
 pub mod ndf;

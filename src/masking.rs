@@ -534,3 +534,135 @@ impl<R: Real, D: Ndf<R>> Masking<R, D> for Implicit {
         R::from_f64(0.25)
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// A masking term chosen at run time
+// ---------------------------------------------------------------------------------------------
+
+/// A masking-shadowing term chosen at run time, for a model whose parts come from a file or
+/// a renderer's material table ([`crate::material::Material`]).
+///
+/// It implements [`Masking<R, D>`] for every NDF with a Smith `Λ` and a projected `α` (what
+/// the approximations need), [`crate::ndf::AnyNdf`] included, by forwarding **every**
+/// method ([`Masking::visibility`] and [`Masking::visibility_fraction`] included) to the
+/// term it names, so a model built on `AnyMasking` evaluates exactly the operations, hence
+/// the bits, of the same model built on that term (tested in `tests/material.rs`). The
+/// price is one branch per call on the variant, a per-material constant.
+/// ([`SmithSeparableWalter`] is missing: it works with [`Beckmann`] only.)
+///
+/// It holds no number, so it is also its own file description (feature `serde`: the snake
+/// case of the variant, `"smith_height_correlated"` (the default), …, `"hammon"`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "snake_case", expecting = "a masking term name")
+)]
+pub enum AnyMasking {
+    /// [`SmithHeightCorrelated`] (the default).
+    #[default]
+    SmithHeightCorrelated,
+    /// [`SmithSeparable`].
+    SmithSeparable,
+    /// [`VCavity`].
+    VCavity,
+    /// [`SchlickGgx`].
+    SchlickGgx,
+    /// [`HammonApprox`] (`"hammon"` in files).
+    #[cfg_attr(feature = "serde", serde(rename = "hammon"))]
+    HammonApprox,
+    /// [`Kelemen`].
+    Kelemen,
+    /// [`Implicit`].
+    Implicit,
+}
+
+impl AnyMasking {
+    /// Every variant.
+    pub const ALL: [AnyMasking; 7] = [
+        AnyMasking::SmithHeightCorrelated,
+        AnyMasking::SmithSeparable,
+        AnyMasking::VCavity,
+        AnyMasking::SchlickGgx,
+        AnyMasking::HammonApprox,
+        AnyMasking::Kelemen,
+        AnyMasking::Implicit,
+    ];
+}
+
+crate::real::splat_as_itself!(AnyMasking);
+
+/// `on_any_masking!(self, g => g.g2(..))`: the expression on the term an [`AnyMasking`]
+/// names.
+macro_rules! on_any_masking {
+    ($any:expr, $g:ident => $e:expr) => {
+        match $any {
+            AnyMasking::SmithHeightCorrelated => {
+                let $g = SmithHeightCorrelated;
+                $e
+            }
+            AnyMasking::SmithSeparable => {
+                let $g = SmithSeparable;
+                $e
+            }
+            AnyMasking::VCavity => {
+                let $g = VCavity;
+                $e
+            }
+            AnyMasking::SchlickGgx => {
+                let $g = SchlickGgx;
+                $e
+            }
+            AnyMasking::HammonApprox => {
+                let $g = HammonApprox;
+                $e
+            }
+            AnyMasking::Kelemen => {
+                let $g = Kelemen;
+                $e
+            }
+            AnyMasking::Implicit => {
+                let $g = Implicit;
+                $e
+            }
+        }
+    };
+}
+
+/// `From` each term.
+macro_rules! any_masking_from {
+    ($($v:ident),*) => {
+        $(impl From<$v> for AnyMasking {
+            #[inline]
+            fn from(_: $v) -> Self {
+                AnyMasking::$v
+            }
+        })*
+    };
+}
+any_masking_from!(
+    SmithHeightCorrelated,
+    SmithSeparable,
+    VCavity,
+    SchlickGgx,
+    HammonApprox,
+    Kelemen,
+    Implicit
+);
+
+impl<R: Real, D: SmithLambda<R> + ProjectedAlpha<R>> Masking<R, D> for AnyMasking {
+    #[inline(always)]
+    fn g2(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
+        on_any_masking!(self, g => g.g2(ndf, wi, wo, wm))
+    }
+
+    #[inline(always)]
+    fn visibility(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
+        on_any_masking!(self, g => g.visibility(ndf, wi, wo, wm))
+    }
+
+    #[inline(always)]
+    fn visibility_fraction(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> (R, R) {
+        on_any_masking!(self, g => g.visibility_fraction(ndf, wi, wo, wm))
+    }
+}

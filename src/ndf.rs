@@ -1188,3 +1188,107 @@ pub fn blinn1977_constants_from_half_angle<R: Real>(beta: R) -> (R, R, R) {
     let c3 = ((R::one() - c2c) / (R::from_f64(core::f64::consts::SQRT_2) - c2c)).sqrt();
     (c1, c2, c3)
 }
+
+// ---------------------------------------------------------------------------------------------
+// A distribution chosen at run time
+// ---------------------------------------------------------------------------------------------
+
+/// A microfacet distribution chosen at run time: one of the NDFs with a Smith `Λ`, for a
+/// model whose parts come from a file or a renderer's material table
+/// ([`crate::material::Material`]).
+///
+/// It implements [`Ndf`], [`SmithLambda`] and [`ProjectedAlpha`] by forwarding **every**
+/// method — the optimised forms ([`Ndf::d_fraction`], [`SmithLambda::height_correlated_den`],
+/// …) included — to the wrapped distribution, so a model built on `AnyNdf` evaluates exactly
+/// the operations, hence the bits, of the same model built on the wrapped type
+/// (`tests/material.rs` checks every method and every model). The price is one branch per
+/// call on the variant, a per-material constant (the same for every lane).
+///
+/// Build one with `From`: `AnyNdf::from(Ggx::<f32>::new(0.3)?)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AnyNdf<R> {
+    /// [`Ggx`] (isotropic or anisotropic).
+    Ggx(Ggx<R>),
+    /// [`GgxIsotropic`], the specialized isotropic GGX.
+    GgxIsotropic(GgxIsotropic<R>),
+    /// [`Beckmann`] (isotropic or anisotropic).
+    Beckmann(Beckmann<R>),
+}
+
+/// `on_any_ndf!(self, n => n.d(wm))`: the expression on the distribution an [`AnyNdf`] holds.
+macro_rules! on_any_ndf {
+    ($any:expr, $n:ident => $e:expr) => {
+        match $any {
+            AnyNdf::Ggx($n) => $e,
+            AnyNdf::GgxIsotropic($n) => $e,
+            AnyNdf::Beckmann($n) => $e,
+        }
+    };
+}
+
+/// `From` each wrapped distribution.
+macro_rules! any_ndf_from {
+    ($($v:ident),*) => {
+        $(impl<R> From<$v<R>> for AnyNdf<R> {
+            #[inline]
+            fn from(n: $v<R>) -> Self {
+                AnyNdf::$v(n)
+            }
+        })*
+    };
+}
+any_ndf_from!(Ggx, GgxIsotropic, Beckmann);
+
+impl<S: Scalar> Splat for AnyNdf<S> {
+    type On<L: Real> = AnyNdf<L>;
+    #[inline]
+    fn splat<L: Real>(&self) -> AnyNdf<L> {
+        on_any_ndf!(self, n => AnyNdf::from(n.splat::<L>()))
+    }
+}
+
+impl<R: Real> Ndf<R> for AnyNdf<R> {
+    #[inline(always)]
+    fn d(&self, wm: Vec3<R>) -> R {
+        on_any_ndf!(self, n => n.d(wm))
+    }
+
+    #[inline(always)]
+    fn d_fraction(&self, wm: Vec3<R>, h: Vec3<R>, len2: R) -> (R, R) {
+        on_any_ndf!(self, n => n.d_fraction(wm, h, len2))
+    }
+}
+
+impl<R: Real> SmithLambda<R> for AnyNdf<R> {
+    #[inline(always)]
+    fn lambda(&self, w: Vec3<R>) -> R {
+        on_any_ndf!(self, n => n.lambda(w))
+    }
+
+    #[inline(always)]
+    fn cos_lambda(&self, w: Vec3<R>) -> R {
+        on_any_ndf!(self, n => n.cos_lambda(w))
+    }
+
+    #[inline(always)]
+    fn g1(&self, w: Vec3<R>) -> R {
+        on_any_ndf!(self, n => n.g1(w))
+    }
+
+    #[inline(always)]
+    fn height_correlated_den(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
+        on_any_ndf!(self, n => n.height_correlated_den(wi, wo))
+    }
+
+    #[inline(always)]
+    fn separable_den(&self, w: Vec3<R>) -> R {
+        on_any_ndf!(self, n => n.separable_den(w))
+    }
+}
+
+impl<R: Real> ProjectedAlpha<R> for AnyNdf<R> {
+    #[inline(always)]
+    fn projected_alpha(&self, w: Vec3<R>) -> R {
+        on_any_ndf!(self, n => n.projected_alpha(w))
+    }
+}

@@ -8,11 +8,12 @@
 
 mod common;
 
+use brdf::masking::AnyMasking;
 use brdf::material::{
     AshikhminShirleyDesc, BlinnPhongClassicDesc, CookTorranceDesc, DenominatorDesc, FresnelDesc,
-    KajiyaKayDesc, LafortuneDesc, LambertDesc, LayeredDesc, LobeDesc, MaskingDesc, Material,
-    MaterialDesc, NdfDesc, NormalizationDesc, NormalizedBlinnPhongDesc, OrenNayarDesc, Preset,
-    Reflectance, Rgb, ShirleyDiffuseDesc, SumDesc, WardDesc, WardNormalizationDesc,
+    KajiyaKayDesc, LafortuneDesc, LambertDesc, LayeredDesc, LobeDesc, Material, MaterialDesc,
+    NdfDesc, NormalizationDesc, NormalizedBlinnPhongDesc, OrenNayarDesc, Preset, Reflectance, Rgb,
+    ShirleyDiffuseDesc, SumDesc, WardDesc, WardNormalizationDesc,
 };
 use brdf::{Brdf, Vec3};
 use proptest::prelude::*;
@@ -88,13 +89,13 @@ fn every_model() -> Vec<MaterialDesc> {
         FresnelDesc::One,
     ];
     let maskings = [
-        MaskingDesc::SmithHeightCorrelated,
-        MaskingDesc::SmithSeparable,
-        MaskingDesc::VCavity,
-        MaskingDesc::SchlickGgx,
-        MaskingDesc::Hammon,
-        MaskingDesc::Kelemen,
-        MaskingDesc::Implicit,
+        AnyMasking::SmithHeightCorrelated,
+        AnyMasking::SmithSeparable,
+        AnyMasking::VCavity,
+        AnyMasking::SchlickGgx,
+        AnyMasking::HammonApprox,
+        AnyMasking::Kelemen,
+        AnyMasking::Implicit,
     ];
     for (i, ndf) in [NdfDesc::Ggx, NdfDesc::Beckmann].into_iter().enumerate() {
         for (j, fresnel) in fresnels.into_iter().enumerate() {
@@ -143,7 +144,7 @@ fn every_model() -> Vec<MaterialDesc> {
         alpha_x: None,
         alpha_y: None,
         fresnel: FresnelDesc::Dielectric { eta: 1.5 },
-        masking: MaskingDesc::SmithHeightCorrelated,
+        masking: AnyMasking::SmithHeightCorrelated,
     });
     v.push(MaterialDesc::Sum(SumDesc {
         terms: vec![diffuse.clone(), coat.clone()],
@@ -613,11 +614,11 @@ proptest! {
             0 => MaterialDesc::CookTorrance(CookTorranceDesc {
                 ndf: NdfDesc::Ggx, alpha: None, alpha_x: Some(a), alpha_y: Some(b),
                 fresnel: FresnelDesc::Conductor { eta: Rgb([c; 3]), k: Rgb([d; 3]) },
-                masking: MaskingDesc::SmithHeightCorrelated,
+                masking: AnyMasking::SmithHeightCorrelated,
             }),
             1 => MaterialDesc::CookTorrance(CookTorranceDesc {
                 ndf: NdfDesc::Beckmann, alpha: Some(a), alpha_x: None, alpha_y: None,
-                fresnel: FresnelDesc::Dielectric { eta: b }, masking: MaskingDesc::VCavity,
+                fresnel: FresnelDesc::Dielectric { eta: b }, masking: AnyMasking::VCavity,
             }),
             2 => MaterialDesc::NormalizedBlinnPhong(NormalizedBlinnPhongDesc {
                 rd: Rgb([a; 3]), rs: b, f0: Reflectance::Value(Rgb([c; 3])), shininess: d,

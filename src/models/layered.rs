@@ -42,12 +42,49 @@ impl<A, B> Sum<A, B> {
     }
 }
 
-/// Reciprocity of a composition: reciprocal iff every part is.
-fn both_reciprocal(a: Properties, b: Properties) -> Reciprocity {
-    match (a.reciprocity, b.reciprocity) {
-        (Reciprocity::Reciprocal, Reciprocity::Reciprocal) => Reciprocity::Reciprocal,
-        (Reciprocity::NotReciprocal { note }, _) | (_, Reciprocity::NotReciprocal { note }) => {
-            Reciprocity::NotReciprocal { note }
+/// The energy condition of a sum (see [`Sum`]).
+pub(crate) const SUM_CONDITION: &str = "the parts' albedos add up to ≤ 1 for every direction";
+
+/// The energy condition of a coat over a base (see [`Layered`]).
+pub(crate) const LAYERED_CONDITION: &str = "the coat's albedo ρ_S(w) ≤ F(cos θ) and ρ_base ≤ 1";
+
+impl Properties {
+    /// The properties of a composition of two parts (a [`Sum`], a [`Layered`] coat, a
+    /// composition of your own):
+    ///
+    /// * reciprocal iff both parts are (otherwise the first non-reciprocal part's note);
+    /// * energy: not conserving if a part is not (that part's note, the first one's if
+    ///   both), otherwise conserving under `condition` — what the composition needs of its
+    ///   parts beyond their own bounds (e.g. "the parts' albedos add up to ≤ 1").
+    ///
+    /// ```
+    /// use brdf::models::{Energy, Properties, Reciprocity};
+    /// let lambert = Properties { reciprocity: Reciprocity::Reciprocal, energy: Energy::Conserving };
+    /// let seed = Properties {
+    ///     reciprocity: Reciprocity::NotReciprocal { note: "divides by cos θi" },
+    ///     energy: Energy::Conserving,
+    /// };
+    /// let c = lambert.combine(seed, "albedos add up to ≤ 1");
+    /// assert_eq!(c.reciprocity, seed.reciprocity);
+    /// assert_eq!(c.energy, Energy::ConservingWhen { condition: "albedos add up to ≤ 1" });
+    /// ```
+    #[must_use]
+    pub fn combine(self, other: Properties, condition: &'static str) -> Properties {
+        let reciprocity = match (self.reciprocity, other.reciprocity) {
+            (Reciprocity::Reciprocal, Reciprocity::Reciprocal) => Reciprocity::Reciprocal,
+            (Reciprocity::NotReciprocal { note }, _) | (_, Reciprocity::NotReciprocal { note }) => {
+                Reciprocity::NotReciprocal { note }
+            }
+        };
+        let energy = match (self.energy, other.energy) {
+            (Energy::NotConserving { note }, _) | (_, Energy::NotConserving { note }) => {
+                Energy::NotConserving { note }
+            }
+            _ => Energy::ConservingWhen { condition },
+        };
+        Properties {
+            reciprocity,
+            energy,
         }
     }
 }
@@ -72,19 +109,9 @@ impl<R: Real, const N: usize, A: Brdf<R, N>, B: Brdf<R, N>> Brdf<R, N> for Sum<A
 
     #[inline]
     fn properties(&self) -> Properties {
-        let (a, b) = (self.a.properties(), self.b.properties());
-        let energy = match (a.energy, b.energy) {
-            (Energy::NotConserving { note }, _) | (_, Energy::NotConserving { note }) => {
-                Energy::NotConserving { note }
-            }
-            _ => Energy::ConservingWhen {
-                condition: "the parts' albedos add up to ≤ 1 for every direction",
-            },
-        };
-        Properties {
-            reciprocity: both_reciprocal(a, b),
-            energy,
-        }
+        self.a
+            .properties()
+            .combine(self.b.properties(), SUM_CONDITION)
     }
 }
 
@@ -162,18 +189,8 @@ where
 
     #[inline]
     fn properties(&self) -> Properties {
-        let (d, s) = (self.base.properties(), self.coat.properties());
-        let energy = match (d.energy, s.energy) {
-            (Energy::NotConserving { note }, _) | (_, Energy::NotConserving { note }) => {
-                Energy::NotConserving { note }
-            }
-            _ => Energy::ConservingWhen {
-                condition: "the coat's albedo ρ_S(w) ≤ F(cos θ) and ρ_base ≤ 1",
-            },
-        };
-        Properties {
-            reciprocity: both_reciprocal(d, s),
-            energy,
-        }
+        self.base
+            .properties()
+            .combine(self.coat.properties(), LAYERED_CONDITION)
     }
 }

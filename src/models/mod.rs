@@ -58,6 +58,8 @@ pub use cook_torrance::CookTorrance;
 pub use kajiya_kay::KajiyaKay;
 pub use lafortune::{Lafortune, LafortuneLobe};
 pub use lambert::Lambert;
+#[cfg(feature = "alloc")]
+pub(crate) use layered::SUM_CONDITION;
 pub use layered::{Layered, Sum};
 pub use oren_nayar::{OrenNayar, OrenNayarFujii};
 pub use shirley_diffuse::ShirleyDiffuse;
