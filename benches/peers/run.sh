@@ -121,7 +121,7 @@ for NDF in isotropic ggx; do
         --warmup "$WARMUP" --values "$WORK/brdf-eval-$NDF.bin" --timing "$WORK/brdf-eval-$NDF.json"
     echo "== values ($NDF)"
     "$py" "$PEERS" compare --pairs "$PAIRS" --mitsuba "$WORK/mitsuba-eval.bin" \
-        --brdf "$WORK/brdf-eval-$NDF.bin" --tolerance "$TOLERANCE" \
+        --brdf "$WORK/brdf-eval-$NDF.bin" --workload "$WORK/workload.json" --tolerance "$TOLERANCE" \
         --out "$WORK/compare-$NDF.json" || STATUS=1
 done
 
@@ -167,7 +167,8 @@ for ndf, name in (("isotropic", "GgxIsotropic"), ("ggx", "Ggx")):
 for ndf, name in (("isotropic", "GgxIsotropic"), ("ggx", "Ggx")):
     e = c[ndf]
     print(f"  values ({name}): max relative error {e['max_rel_error']:.2e} (99.9 % below "
-          f"{e['p999_rel_error']:.2e}, mean {e['mean_rel_error']:.2e})")
+          f"{e['p999_rel_error']:.2e}, mean {e['mean_rel_error']:.2e}); against f64: Mitsuba "
+          f"{e['mitsuba_vs_f64']['max_rel_error']:.2e}, brdf {e['brdf_vs_f64']['max_rel_error']:.2e}")
 if sample == "1":
     s = load("mitsuba-sample.json")
     print(f"\nroughconductor sample, Mitsuba only (the crate half comes with its batch sampler):")
