@@ -1,0 +1,227 @@
+//! The crate half of the Mitsuba 3 peer benchmark (`benches/peers/run.sh` builds and runs
+//! it): times [`brdf::batch::eval`] on Mitsuba's `roughconductor` workload — GGX, separable
+//! Smith `G1·G1`, exact conductor Fresnel per RGB channel — over the direction pairs of a
+//! pairs file, and writes the values and the timing.
+//!
+//! Mitsuba's `eval` returns `f · cos θ` of the direction it calls `wo` and samples, the one
+//! towards the light — in this crate's naming `wi`. So the workload here is
+//! `f(wi, wo) · wi.z` ([`TimesCosThetaI`]); the pairs file stores `wi` (light) and `wo`
+//! (viewer) in this crate's naming (`benches/peers/peers.py` documents the format).
+//!
+//! `--ndf isotropic` (default) runs `CookTorrance<GgxIsotropic, Conductor<3>, SmithSeparable>`,
+//! `--ndf ggx` the same on the anisotropy-capable `Ggx` (with equal α, as Mitsuba's GGX).
+//! Timing: `--warmup` untimed calls, then `--reps` calls each timed on its own (wall clock);
+//! the timing file gives the median and the best.
+//!
+//! ```sh
+//! cargo build --release -p brdf-tools --bin peer_roughconductor
+//! bash benches/peers/run.sh   # generates the pairs and runs this program
+//! ```
+use std::hint::black_box;
+use std::io::{Read, Write};
+use std::time::Instant;
+use std::{fs, process};
+
+use brdf::batch::{self, BatchBrdf, Directions, Isa};
+use brdf::fresnel::Conductor;
+use brdf::masking::SmithSeparable;
+use brdf::models::{CookTorrance, Properties};
+use brdf::ndf::{Ggx, GgxIsotropic};
+use brdf::real::Splat;
+use brdf::{Brdf, Real, Vec3};
+
+const PAIRS_MAGIC: &[u8; 8] = b"BRDFPR01";
+const VALUES_MAGIC: &[u8; 8] = b"BRDFVL01";
+/// Arrays of a pairs file: wi.xyz, wo.xyz, uc, u0, u1.
+const PAIR_ARRAYS: usize = 9;
+
+/// `f(wi, wo) · cos θi` per channel: the value Mitsuba's `eval` returns (its `wo` is `wi`
+/// here).
+#[derive(Clone, Copy, Debug)]
+struct TimesCosThetaI<B>(B);
+
+impl<R: Real, B: Brdf<R, 3>> Brdf<R, 3> for TimesCosThetaI<B> {
+    #[inline(always)]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; 3] {
+        let f = self.0.eval(wi, wo);
+        [f[0] * wi.z, f[1] * wi.z, f[2] * wi.z]
+    }
+    fn properties(&self) -> Properties {
+        self.0.properties()
+    }
+}
+
+impl<B: Splat> Splat for TimesCosThetaI<B> {
+    type On<L: Real> = TimesCosThetaI<B::On<L>>;
+    fn splat<L: Real>(&self) -> Self::On<L> {
+        TimesCosThetaI(self.0.splat())
+    }
+}
+
+const USAGE: &str = "usage: peer_roughconductor --pairs FILE --values OUT --timing OUT.json \\
+    --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--reps N] [--warmup N]
+
+Times brdf::batch::eval on Mitsuba's roughconductor workload over the pairs of FILE (written
+by benches/peers/peers.py gen), writes the values (3 channels) to OUT and the timing to
+OUT.json. Run by benches/peers/run.sh.";
+
+/// The command line.
+struct Args {
+    pairs: String,
+    values: String,
+    timing: String,
+    alpha: f32,
+    eta: [f32; 3],
+    k: [f32; 3],
+    ndf: String,
+    reps: usize,
+    warmup: usize,
+}
+
+fn fail(msg: impl std::fmt::Display) -> ! {
+    eprintln!("peer_roughconductor: {msg}");
+    process::exit(2)
+}
+
+/// A number, or exit with the offending text.
+fn number<T: std::str::FromStr<Err: std::fmt::Display>>(s: &str) -> T {
+    s.trim()
+        .parse()
+        .unwrap_or_else(|e| fail(format!("{s:?}: {e}")))
+}
+
+/// Three comma-separated numbers.
+fn rgb(s: &str) -> [f32; 3] {
+    let v: Vec<f32> = s.split(',').map(number).collect();
+    v.try_into()
+        .unwrap_or_else(|_| fail(format!("{s:?}: expected three comma-separated numbers")))
+}
+
+fn args() -> Args {
+    let a = brdf_tools::Args::parse(
+        &[
+            "--pairs", "--values", "--timing", "--alpha", "--eta", "--k", "--ndf", "--reps",
+            "--warmup",
+        ],
+        &[],
+        USAGE,
+    );
+    let required = |name: &str| {
+        a.value(name)
+            .unwrap_or_else(|| fail(format!("{name} is required\n\n{USAGE}")))
+    };
+    let args = Args {
+        pairs: required("--pairs").into(),
+        values: required("--values").into(),
+        timing: required("--timing").into(),
+        alpha: number(required("--alpha")),
+        eta: rgb(required("--eta")),
+        k: rgb(required("--k")),
+        ndf: a.value("--ndf").unwrap_or("isotropic").into(),
+        reps: a.value("--reps").map_or(1000, number),
+        warmup: a.value("--warmup").map_or(20, number),
+    };
+    if args.reps == 0 {
+        fail("--reps must be positive");
+    }
+    args
+}
+
+/// The arrays of a pairs file.
+fn read_pairs(path: &str) -> Vec<Vec<f32>> {
+    let mut bytes = Vec::new();
+    fs::File::open(path)
+        .and_then(|mut f| f.read_to_end(&mut bytes))
+        .unwrap_or_else(|e| fail(format!("{path}: {e}")));
+    if bytes.len() < 16 || &bytes[..8] != PAIRS_MAGIC {
+        fail(format!("{path}: not a pairs file"));
+    }
+    let n = u64::from_le_bytes(bytes[8..16].try_into().unwrap()) as usize;
+    let body = &bytes[16..];
+    if body.len() != n * PAIR_ARRAYS * 4 {
+        fail(format!("{path}: expected {} floats", n * PAIR_ARRAYS));
+    }
+    body.chunks_exact(n * 4)
+        .map(|a| {
+            a.chunks_exact(4)
+                .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
+                .collect()
+        })
+        .collect()
+}
+
+fn write_values(path: &str, channels: &[Vec<f32>]) {
+    let mut out = Vec::with_capacity(24 + channels.len() * channels[0].len() * 4);
+    out.extend_from_slice(VALUES_MAGIC);
+    out.extend_from_slice(&(channels[0].len() as u64).to_le_bytes());
+    out.extend_from_slice(&(channels.len() as u64).to_le_bytes());
+    for c in channels {
+        for v in c {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    fs::File::create(path)
+        .and_then(|mut f| f.write_all(&out))
+        .unwrap_or_else(|e| fail(format!("{path}: {e}")));
+}
+
+/// Per-repetition wall times (s) of `batch::eval` over all pairs, after `warmup` untimed
+/// calls; leaves the last values in `out`.
+fn time_eval<B: BatchBrdf<3>>(
+    m: &B,
+    wi: Directions<'_>,
+    wo: Directions<'_>,
+    out: &mut [Vec<f32>; 3],
+    a: &Args,
+) -> Vec<f64> {
+    let run = |out: &mut [Vec<f32>; 3]| {
+        let [r, g, b] = out;
+        batch::eval(black_box(m), black_box(wi), black_box(wo), [r, g, b]);
+        black_box(&*out);
+    };
+    for _ in 0..a.warmup {
+        run(out);
+    }
+    (0..a.reps)
+        .map(|_| {
+            let t = Instant::now();
+            run(out);
+            t.elapsed().as_secs_f64()
+        })
+        .collect()
+}
+
+fn main() {
+    let a = args();
+    let p = read_pairs(&a.pairs);
+    let n = p[0].len();
+    let wi = Directions::new(&p[0], &p[1], &p[2]);
+    let wo = Directions::new(&p[3], &p[4], &p[5]);
+    let mut out = [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]];
+    let gold = Conductor::<f32, 3>::new(a.eta, a.k).unwrap_or_else(|e| fail(e));
+    let mut times = match a.ndf.as_str() {
+        "isotropic" => {
+            let d = GgxIsotropic::<f32>::new(a.alpha).unwrap_or_else(|e| fail(e));
+            let m = TimesCosThetaI(CookTorrance::new(d, gold, SmithSeparable));
+            time_eval(&m, wi, wo, &mut out, &a)
+        }
+        "ggx" => {
+            let d = Ggx::<f32>::anisotropic(a.alpha, a.alpha).unwrap_or_else(|e| fail(e));
+            let m = TimesCosThetaI(CookTorrance::new(d, gold, SmithSeparable));
+            time_eval(&m, wi, wo, &mut out, &a)
+        }
+        other => fail(format!("--ndf {other:?}: expected isotropic or ggx")),
+    };
+    write_values(&a.values, &out);
+    times.sort_by(f64::total_cmp);
+    let median = times[times.len() / 2];
+    let json = format!(
+        "{{\n \"n\": {n},\n \"isa\": \"{:?}\",\n \"ndf\": \"{}\",\n \"reps\": {},\n \
+         \"median_s\": {median:e},\n \"best_s\": {:e}\n}}\n",
+        Isa::detect(),
+        a.ndf,
+        a.reps,
+        times[0],
+    );
+    fs::write(&a.timing, json).unwrap_or_else(|e| fail(format!("{}: {e}", a.timing)));
+}
