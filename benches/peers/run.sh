@@ -40,6 +40,7 @@ for arg in "$@"; do
     *) N=$arg ;;
     esac
 done
+[ "$N" -ge 1 ] || { echo "run.sh: N must be at least 1" >&2 && exit 2; }
 REPS=${PEERS_REPS:-$(((1 << 27) / N > 20 ? (1 << 27) / N : 20))}
 WARMUP=${PEERS_WARMUP:-20}
 
@@ -57,7 +58,15 @@ if ! "$py" -c "import mitsuba, drjit, numpy, sys
 sys.exit(not (mitsuba.__version__ == '$MITSUBA_VERSION' and drjit.__version__ == '$DRJIT_VERSION'
               and numpy.__version__ == '$NUMPY_VERSION'))" 2>/dev/null; then
     echo "== creating $VENV (mitsuba==$MITSUBA_VERSION drjit==$DRJIT_VERSION numpy==$NUMPY_VERSION)"
-    "${PEERS_PYTHON:-python3}" -m venv "$VENV"
+    if ! "${PEERS_PYTHON:-python3}" -m venv --clear "$VENV"; then
+        # Debian's python3 ships venv's pip bootstrap separately.
+        command -v apt-get >/dev/null || { echo "run.sh: python3 -m venv failed" >&2 && exit 1; }
+        SUDO=""
+        [ "$(id -u)" -eq 0 ] || SUDO=sudo
+        $SUDO apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq python3-venv >/dev/null
+        "${PEERS_PYTHON:-python3}" -m venv --clear "$VENV"
+    fi
     "$VENV/bin/pip" install --quiet --disable-pip-version-check \
         "mitsuba==$MITSUBA_VERSION" "drjit==$DRJIT_VERSION" "numpy==$NUMPY_VERSION"
 fi
@@ -132,11 +141,12 @@ if [ "$SAMPLE" = 1 ]; then
 fi
 
 # --- 5. Summary -------------------------------------------------------------------------------
+BRDF_VERSION="brdf $(git rev-parse --short HEAD 2>/dev/null || echo '(no git)'), $(rustc --version)"
 CPU=$(lscpu | sed -n 's/^Model name: *//p' | head -n1)
 FAMILY=$(lscpu | sed -n 's/^CPU family: *//p' | head -n1)
-"$py" - "$WORK" "$CPU" "$FAMILY" "$LLVM_VERSION" "$SAMPLE" <<'EOF'
+"$py" - "$WORK" "$CPU" "$FAMILY" "$LLVM_VERSION" "$SAMPLE" "$BRDF_VERSION" <<'EOF'
 import json, os, sys
-work, cpu, family, llvm, sample = sys.argv[1:]
+work, cpu, family, llvm, sample, brdf = sys.argv[1:]
 load = lambda name: json.load(open(os.path.join(work, name)))
 w, m = load("workload.json"), load("mitsuba-eval.json")
 b, c = {}, {}
@@ -153,6 +163,7 @@ print(f"  CPU: {cpu} (family {family}); load average: {load_avg}")
 jit = "loaded from Dr.Jit's disk cache" if m["compile_ms"] == 0 else f"{m['compile_ms']:.0f} ms"
 print(f"  Mitsuba {w['mitsuba']}, Dr.Jit {w['drjit']}, {w['variant']}, {w['threads']} thread "
       f"(process CPU / wall {m['cpu_per_wall']:.2f}), {llvm}; JIT compilation ({jit}) excluded")
+print(f"  {brdf}, release build")
 print(f"  {'M evaluations/s':40} {'median':>8} {'best':>8}   ({m['reps']} repetitions)")
 rows = [("Mitsuba, per call (trace + kernel)", m["wall_median_s"], m["wall_best_s"]),
         ("Mitsuba, kernel alone", m["kernel_median_s"], m["kernel_best_s"])]
