@@ -334,7 +334,7 @@ fn bench_rough_conductor(c: &mut Criterion) {
     let mut out = [vec![0.0f32; N], vec![0.0f32; N], vec![0.0f32; N]];
     let m = TimesCos(CookTorrance::new(
         GgxIsotropic::<f32>::new(0.2).unwrap(),
-        Conductor::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB),
+        Conductor::<f32, 3>::from_preset(ior::Preset::Gold).unwrap(),
         SmithSeparable,
     ));
     let mut g = c.benchmark_group("batch/rough_conductor");

@@ -35,7 +35,7 @@
 //! # Accuracy of the approximations for metals
 //!
 //! Maximum absolute error over `cos θ ∈ [0, 1]` against the exact [`conductor`] Fresnel, per
-//! channel (R, G, B at 650/550/450 nm), for the metal presets of [`crate::ior::METALS_RGB`]
+//! channel (R, G, B at 650/550/450 nm), for the metal presets ([`crate::ior::Preset::METALS`])
 //! (measured by `tests/fresnel.rs::metal_models_error_table`, which asserts these bounds):
 //!
 //! | metal     | F0 (R, G, B)        | Schlick (R, G, B)     | F82-tint (R, G, B)       |
@@ -75,6 +75,7 @@
 use num_complex::Complex;
 
 use crate::error::{self, Error};
+use crate::ior::Preset;
 use crate::real::{Splat, splat_array, splat_scalar};
 use crate::{Real, Scalar};
 
@@ -950,12 +951,15 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Dielectric<R> {
 ///
 /// ```
 /// use brdf::fresnel::{Conductor, FresnelTerm};
-/// use brdf::ior;
-/// let gold = Conductor::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB);
+/// use brdf::ior::Preset;
+/// let gold = Conductor::<f32, 3>::from_preset(Preset::Gold)?;
 /// let f = gold.eval(1.0);
 /// assert!(f[0] > f[1] && f[1] > f[2]); // yellow
-/// let seed_gold = Conductor::<f64, 1>::from_preset(&ior::GOLD).unwrap();
+/// // The seed talk's single value for gold, 0.34 + 3.2i, on one channel:
+/// let e = Preset::Gold.seed().unwrap();
+/// let seed_gold = Conductor::new([e.eta], [e.k])?;
 /// assert!((seed_gold.eval(1.0)[0] - 0.887).abs() < 5e-4);
+/// # Ok::<(), brdf::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Conductor<R, const N: usize> {
@@ -1015,22 +1019,6 @@ impl<R: Real, const N: usize> Conductor<R, N> {
     }
 }
 
-impl<S: Scalar> Conductor<S, 1> {
-    /// A one-channel conductor from a single-wavelength preset (e.g. the seed table's
-    /// [`crate::ior::GOLD`]). Dielectric presets (`k = 0`) are accepted: the result equals
-    /// [`Dielectric`] seen from outside. Errors only for a malformed preset.
-    pub fn from_preset(p: &crate::ior::Preset) -> Result<Self, Error> {
-        Self::new([S::of(p.eta)], [S::of(p.k)])
-    }
-}
-
-impl<S: Scalar> Conductor<S, 3> {
-    /// An RGB conductor from a measured preset of [`crate::ior::METALS_RGB`].
-    pub fn from_rgb_preset(p: &crate::ior::RgbPreset) -> Self {
-        Self::from_valid(p.eta.map(S::of), p.k.map(S::of))
-    }
-}
-
 impl<S: Scalar, const N: usize> Splat for Conductor<S, N> {
     type On<L: Real> = Conductor<L, N>;
     #[inline]
@@ -1064,12 +1052,13 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Conductor<R, N> {
 /// # Examples
 ///
 /// ```
-/// use brdf::fresnel::{F82Tint, FresnelTerm};
-/// use brdf::ior;
-/// let gold = F82Tint::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB);
-/// let exact = brdf::fresnel::Conductor::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB);
+/// use brdf::fresnel::{Conductor, F82Tint, FresnelTerm};
+/// use brdf::ior::Preset;
+/// let gold = F82Tint::<f32, 3>::from_preset(Preset::Gold)?;
+/// let exact = Conductor::<f32, 3>::from_preset(Preset::Gold)?;
 /// let (a, b) = (gold.eval(0.5), exact.eval(0.5));
 /// assert!((0..3).all(|i| (a[i] - b[i]).abs() < 0.02));
+/// # Ok::<(), brdf::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct F82Tint<R, const N: usize> {
@@ -1119,14 +1108,6 @@ impl<R: Real, const N: usize> F82Tint<R, N> {
     /// The precomputed correction coefficient `b` per channel.
     pub fn b(&self) -> [R; N] {
         self.b
-    }
-}
-
-impl<S: Scalar> F82Tint<S, 3> {
-    /// Fitted to a measured RGB preset of [`crate::ior::METALS_RGB`] (see
-    /// [`F82Tint::from_ior`]).
-    pub fn from_rgb_preset(p: &crate::ior::RgbPreset) -> Self {
-        Self::from_ior(p.eta.map(S::of), p.k.map(S::of)).expect("presets are valid")
     }
 }
 
@@ -1245,5 +1226,92 @@ impl<R: Real> FresnelTerm<R, 3> for AnyFresnel<R> {
     #[inline(always)]
     fn eval_cos2(&self, cos_theta_d: R, cos2_theta_d: R) -> [R; 3] {
         on_any_fresnel!(self, f => f.eval_cos2(cos_theta_d, cos2_theta_d))
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Terms from the named presets of `crate::ior`
+// ---------------------------------------------------------------------------------------------
+
+/// Normal-incidence reflectance per RGB channel of a preset's complex IOR,
+/// `((η − 1)² + k²)/((η + 1)² + k²)` ([`f0_from_complex_ior`]).
+///
+/// ```
+/// use brdf::{fresnel::f0_from_preset, ior::Preset};
+/// assert!((f0_from_preset(Preset::Quartz)[1] - 0.0337).abs() < 1e-4);
+/// ```
+#[must_use]
+pub fn f0_from_preset(p: Preset) -> [f64; 3] {
+    let (eta, k) = p.ior();
+    core::array::from_fn(|i| f0_from_complex_ior(eta[i], k[i]))
+}
+
+/// Every preset constructor has one shape: `from_preset(p: ior::Preset) -> Result<_, Error>`
+/// with three (RGB) channels where the term has channels. They fail only where the term
+/// cannot represent the preset ([`Dielectric::from_preset`] of an absorbing one).
+impl<S: Scalar> Conductor<S, 3> {
+    /// The exact RGB conductor of a preset's complex IOR (dielectric presets, `k = 0`,
+    /// give the [`Dielectric`] seen from outside).
+    ///
+    /// ```
+    /// use brdf::fresnel::{Conductor, FresnelTerm};
+    /// use brdf::ior::Preset;
+    /// let copper: Conductor<f32, 3> = Conductor::from_preset(Preset::from_name("copper").unwrap())?;
+    /// assert!(copper.eval(1.0)[0] > 0.9);
+    /// # Ok::<(), brdf::Error>(())
+    /// ```
+    pub fn from_preset(p: Preset) -> Result<Self, Error> {
+        let (eta, k) = p.ior();
+        Self::new(eta.map(S::of), k.map(S::of))
+    }
+}
+
+impl<S: Scalar> Schlick<S, 3> {
+    /// Schlick with the exact `F0` of a preset's complex IOR per channel
+    /// ([`f0_from_preset`]) and `f90 = 1`. See the module docs for its error on metals.
+    ///
+    /// ```
+    /// use brdf::fresnel::{FresnelTerm, Schlick};
+    /// use brdf::ior::Preset;
+    /// let water = Schlick::<f32, 3>::from_preset(Preset::Water)?;
+    /// assert!((water.eval(1.0)[0] - 0.0201).abs() < 1e-4);
+    /// # Ok::<(), brdf::Error>(())
+    /// ```
+    pub fn from_preset(p: Preset) -> Result<Self, Error> {
+        Self::new(f0_from_preset(p).map(S::of))
+    }
+}
+
+impl<S: Scalar> F82Tint<S, 3> {
+    /// F82-tint fitted to a preset's complex IOR per channel (see [`F82Tint::from_ior`]).
+    pub fn from_preset(p: Preset) -> Result<Self, Error> {
+        let (eta, k) = p.ior();
+        Self::from_ior(eta.map(S::of), k.map(S::of))
+    }
+}
+
+impl<S: Scalar> Dielectric<S> {
+    /// The exact dielectric of a non-absorbing preset ([`Preset::is_conductor`] false: quartz,
+    /// water, sapphire, titanium dioxide, ivory, iron oxide); its IOR is the same in every
+    /// channel. An absorbing preset is an [`Error`] (`param` `"preset"`, `value` its largest
+    /// `k`): use [`Conductor::from_preset`].
+    ///
+    /// ```
+    /// use brdf::fresnel::Dielectric;
+    /// use brdf::ior::Preset;
+    /// assert_eq!(Dielectric::<f64>::from_preset(Preset::Sapphire)?.eta(), 1.76);
+    /// assert!(Dielectric::<f64>::from_preset(Preset::Gold).is_err());
+    /// # Ok::<(), brdf::Error>(())
+    /// ```
+    pub fn from_preset(p: Preset) -> Result<Self, Error> {
+        let (eta, k) = p.ior();
+        if p.is_conductor() {
+            return Err(Error::OutOfDomain {
+                param: "preset",
+                value: k[0].max(k[1]).max(k[2]),
+                domain: "non-absorbing presets (k = 0); use Conductor::from_preset",
+            });
+        }
+        Self::new(S::of(eta[1]))
     }
 }

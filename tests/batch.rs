@@ -153,7 +153,7 @@ fn every_available_variant_matches_scalar_ggx_schlick() {
 fn every_available_variant_matches_scalar_rough_conductor_rgb() {
     let ct = CookTorrance::new(
         Ggx::<f32>::new(0.2).unwrap(),
-        Conductor::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB),
+        Conductor::<f32, 3>::from_preset(ior::Preset::Gold).unwrap(),
         SmithSeparable,
     );
     let sum = Sum::new(ct, Lambert::<f32, 3>::new([0.1, 0.2, 0.3]).unwrap());
@@ -173,7 +173,7 @@ fn pipelined_cook_torrance_matches_scalar() {
     check_pipelined(
         &CookTorrance::new(
             Ggx::<f32>::anisotropic(0.05, 0.4).unwrap(),
-            Conductor::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB),
+            Conductor::<f32, 3>::from_preset(ior::Preset::Gold).unwrap(),
             SmithSeparable,
         ),
         1e-6,

@@ -459,11 +459,7 @@ fn glam_types_convert_in() {
 fn y_up_vectors_need_a_frame() {
     let gold = CookTorrance::new(
         Ggx::<f32>::new(0.3).unwrap(),
-        Conductor::<f32, 3>::new(
-            ior::GOLD_RGB.eta.map(|v| v as f32),
-            ior::GOLD_RGB.k.map(|v| v as f32),
-        )
-        .unwrap(),
+        Conductor::from_preset(ior::Preset::Gold).unwrap(),
         SmithHeightCorrelated,
     );
     // Local (z-up) directions and the same directions in a y-up world (x, z, y) → (x, y, z)

@@ -439,16 +439,16 @@ fn f82_tint_properties() {
 
 #[test]
 fn f82_fitted_to_ior_is_exact_at_three_points() {
-    for p in ior::METALS_RGB {
-        let m = F82Tint::<f64, 3>::from_rgb_preset(p);
-        let exact = Conductor::<f64, 3>::from_rgb_preset(p);
+    for p in ior::Preset::METALS {
+        let m = F82Tint::<f64, 3>::from_preset(p).unwrap();
+        let exact = Conductor::<f64, 3>::from_preset(p).unwrap();
         for c in [0.0, F82_COS_THETA, 1.0] {
             let (a, b) = (m.eval(c), exact.eval(c));
             for i in 0..3 {
                 assert!(
                     (a[i] - b[i]).abs() < 1e-14,
                     "{} {c} {i}: {} vs {}",
-                    p.name,
+                    p,
                     a[i],
                     b[i]
                 );
@@ -508,7 +508,7 @@ fn metal_models_error_table() {
         ("titanium", [0.19, 0.17, 0.14], [0.017, 0.012, 0.0080]),
         ("chromium", [0.20, 0.20, 0.15], [0.022, 0.024, 0.0087]),
     ];
-    assert_eq!(BOUNDS.len(), ior::METALS_RGB.len());
+    assert_eq!(BOUNDS.len(), ior::Preset::METALS.len());
     let tight = |err: f64, bound: f64, what: &str| {
         let sig2 = {
             let e = 10f64.powf(err.log10().floor() - 1.0);
@@ -521,12 +521,13 @@ fn metal_models_error_table() {
             "{what}: bound {bound} is loose for {err:.5}"
         );
     };
-    for (p, (name, schlick_b, f82_b_)) in ior::METALS_RGB.iter().zip(BOUNDS) {
-        assert_eq!(&p.name, name);
-        let f82 = F82Tint::<f64, 3>::from_rgb_preset(p);
-        let mut line = format!("{:10}", p.name);
+    for (p, (name, schlick_b, f82_b_)) in ior::Preset::METALS.iter().zip(BOUNDS) {
+        assert_eq!(&p.name(), name);
+        let f82 = F82Tint::<f64, 3>::from_preset(*p).unwrap();
+        let mut line = format!("{:10}", p.name());
+        let (eta, kk) = p.ior();
         for i in 0..3 {
-            let (n, k) = (p.eta[i], p.k[i]);
+            let (n, k) = (eta[i], kk[i]);
             let f0 = f0_from_complex_ior(n, k);
             let e_s = max_error(|c| schlick(f0, c), n, k);
             let e_f = max_error(|c| f82.eval(c)[i], n, k);
@@ -534,14 +535,14 @@ fn metal_models_error_table() {
             assert!(
                 (0.0..=1.0 + 1e-9).contains(&g),
                 "{}: edge tint {g} outside [0, 1]",
-                p.name
+                p.name()
             );
             let (n2, k2) = gulbrandsen_to_nk(r, g.min(1.0));
             let e_g = max_error(|c| conductor(c, n2, k2), n, k);
-            tight(e_s, schlick_b[i], &format!("{} schlick ch{i}", p.name));
-            tight(e_f, f82_b_[i], &format!("{} f82 ch{i}", p.name));
-            assert!(e_f < e_s, "{}: F82 must beat Schlick", p.name);
-            assert!(e_g < 1e-12, "{}: Gulbrandsen round trip {e_g}", p.name);
+            tight(e_s, schlick_b[i], &format!("{} schlick ch{i}", p.name()));
+            tight(e_f, f82_b_[i], &format!("{} f82 ch{i}", p.name()));
+            assert!(e_f < e_s, "{}: F82 must beat Schlick", p.name());
+            assert!(e_g < 1e-12, "{}: Gulbrandsen round trip {e_g}", p.name());
             line += &format!("  S {e_s:.4} F82 {e_f:.4} G {e_g:.0e} (g {g:.3})");
         }
         println!("{line}");
@@ -572,7 +573,8 @@ fn fresnel_terms_match_free_functions() {
     // Precomputed coefficient.
     assert_eq!(f.b()[0], f82_b(0.9, 0.8));
     // Constructors from presets and from the artist parametrization.
-    let g = Conductor::<f32, 1>::from_preset(&ior::GOLD).unwrap();
+    let e = ior::Preset::Gold.seed().unwrap();
+    let g = Conductor::new([e.eta as f32], [e.k as f32]).unwrap();
     assert!((g.eval(1.0)[0] - 0.887).abs() < 5e-4);
     let a =
         Conductor::<f64, 3>::from_reflectivity_edge_tint([0.9, 0.7, 0.4], [0.2, 0.5, 0.9]).unwrap();

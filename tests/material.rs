@@ -250,7 +250,7 @@ fn beckmann_iso() -> Beckmann<f32> {
     Beckmann::new(0.05).unwrap()
 }
 fn gold() -> Conductor<f32, 3> {
-    Conductor::from_rgb_preset(&ior::GOLD_RGB)
+    Conductor::from_preset(ior::Preset::Gold).unwrap()
 }
 
 proptest! {
@@ -269,7 +269,7 @@ proptest! {
         fresnel_forwards("Dielectric η < 1", Dielectric::new(0.7).unwrap(), &p);
         fresnel_forwards("Conductor", gold(), &p);
         fresnel_forwards("Schlick", Schlick::new([0.04, 0.5, 0.9]).unwrap(), &p);
-        fresnel_forwards("F82Tint", F82Tint::from_rgb_preset(&ior::CHROMIUM_RGB), &p);
+        fresnel_forwards("F82Tint", F82Tint::from_preset(ior::Preset::Chromium).unwrap(), &p);
         fresnel_forwards("NoFresnel", NoFresnel, &p);
 
         macro_rules! every_masking {
@@ -463,7 +463,7 @@ fn cook_torrance_models(p: &Pairs) {
     let (iso, aniso) = (ggx_iso(), ggx());
     let dielectric = Dielectric::new(1.5).unwrap();
     let schlick = Schlick::new([0.04, 0.5, 0.9]).unwrap();
-    let f82 = F82Tint::from_rgb_preset(&ior::CHROMIUM_RGB);
+    let f82 = F82Tint::from_preset(ior::Preset::Chromium).unwrap();
     for_each_ndf_fresnel(p, iso, dielectric, schlick, f82);
     for_each_ndf_fresnel(p, aniso, dielectric, schlick, f82);
     for_each_ndf_fresnel(p, beckmann(), dielectric, schlick, f82);

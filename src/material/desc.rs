@@ -10,7 +10,6 @@ use serde::{Deserialize, Serialize};
 
 use super::Material;
 use crate::fresnel::{AnyFresnel, Conductor, Dielectric, NoFresnel, Schlick};
-use crate::ior;
 use crate::masking::AnyMasking;
 use crate::models::{
     AshikhminShirley, BlinnPhongClassic, CookTorrance, KajiyaKay, Lafortune, LafortuneLobe,
@@ -144,77 +143,10 @@ impl<'de> Deserialize<'de> for Rgb {
     }
 }
 
-/// A named optical constant: the measured RGB metals of [`ior::METALS_RGB`] and the seed
-/// talk's table [`ior::SEED_TABLE`]. Metals that are in both use the measured RGB data.
-/// Names in files are snake case: `"gold"`, `"titanium_dioxide"`, …
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-#[allow(missing_docs)] // the variant names are the materials
-pub enum Preset {
-    Gold,
-    Silver,
-    Copper,
-    Aluminium,
-    Iron,
-    Titanium,
-    Chromium,
-    Quartz,
-    Water,
-    Sapphire,
-    TitaniumDioxide,
-    Ivory,
-    IronOxide,
-    Carbon,
-}
-
-impl Preset {
-    /// Every preset.
-    pub const ALL: [Preset; 14] = [
-        Preset::Gold,
-        Preset::Silver,
-        Preset::Copper,
-        Preset::Aluminium,
-        Preset::Iron,
-        Preset::Titanium,
-        Preset::Chromium,
-        Preset::Quartz,
-        Preset::Water,
-        Preset::Sapphire,
-        Preset::TitaniumDioxide,
-        Preset::Ivory,
-        Preset::IronOxide,
-        Preset::Carbon,
-    ];
-
-    /// The complex IOR `(eta, k)` per RGB channel.
-    #[must_use]
-    pub fn ior(self) -> ([f64; 3], [f64; 3]) {
-        let rgb = |p: ior::RgbPreset| (p.eta, p.k);
-        let seed = |p: ior::Preset| ([p.eta; 3], [p.k; 3]);
-        match self {
-            Preset::Gold => rgb(ior::GOLD_RGB),
-            Preset::Silver => rgb(ior::SILVER_RGB),
-            Preset::Copper => rgb(ior::COPPER_RGB),
-            Preset::Aluminium => rgb(ior::ALUMINIUM_RGB),
-            Preset::Iron => rgb(ior::IRON_RGB),
-            Preset::Titanium => rgb(ior::TITANIUM_RGB),
-            Preset::Chromium => rgb(ior::CHROMIUM_RGB),
-            Preset::Quartz => seed(ior::QUARTZ),
-            Preset::Water => seed(ior::WATER),
-            Preset::Sapphire => seed(ior::SAPPHIRE),
-            Preset::TitaniumDioxide => seed(ior::TITANIUM_DIOXIDE),
-            Preset::Ivory => seed(ior::IVORY),
-            Preset::IronOxide => seed(ior::IRON_OXIDE),
-            Preset::Carbon => seed(ior::CARBON),
-        }
-    }
-
-    /// Whether the preset absorbs (`k > 0` in some channel): a conductor, not a dielectric.
-    #[must_use]
-    pub fn is_conductor(self) -> bool {
-        self.ior().1.iter().any(|&k| k > 0.0)
-    }
-}
+/// A named optical constant: the crate's one list of preset names, [`crate::ior::Preset`]
+/// (re-exported here for material files). Names in files are snake case: `"gold"`,
+/// `"titanium_dioxide"`, …
+pub use crate::ior::Preset;
 
 /// A normal-incidence reflectance per channel (`f0`, a specular colour): given directly,
 /// or from a preset, or from a complex IOR.

@@ -29,7 +29,7 @@
 //! // A table of materials of different models, chosen at run time.
 //! let gold = CookTorrance::new(
 //!     AnyNdf::from(GgxIsotropic::<f32>::new(0.2)?),
-//!     AnyFresnel::from(Conductor::from_rgb_preset(&ior::GOLD_RGB)),
+//!     AnyFresnel::from(Conductor::from_preset(ior::Preset::Gold)?),
 //!     AnyMasking::SmithHeightCorrelated,
 //! );
 //! let table: [Material<f32>; 2] = [Lambert::new([0.8, 0.5, 0.3])?.into(), gold.into()];

@@ -254,7 +254,13 @@ fn rs_rp(deg: f64, eta: f64, k: f64) -> (f64, f64, f64) {
 fn fresnel_materials(dir: &Path) -> Res<PathBuf> {
     figure(dir, "fresnel_materials", (1000, 760), |root| {
         let panels = root.split_evenly((2, 2));
-        let list = [ior::QUARTZ, ior::GOLD, ior::TITANIUM_DIOXIDE, ior::SAPPHIRE];
+        let list = [
+            ior::Preset::Quartz,
+            ior::Preset::Gold,
+            ior::Preset::TitaniumDioxide,
+            ior::Preset::Sapphire,
+        ]
+        .map(|p| p.seed().expect("in the seed table"));
         for (area, p) in panels.iter().zip(list) {
             let curve = |f: &dyn Fn((f64, f64, f64)) -> f64| {
                 degrees(0.0, 90.0, 360)
@@ -266,9 +272,9 @@ fn fresnel_materials(dir: &Path) -> Res<PathBuf> {
                 Curve::new("R_p (p, TM)", colour(1), curve(&|r| r.1)).dashed(),
                 Curve::new("R unpolarized", colour(6), curve(&|r| r.2)),
             ];
-            if p.name == "gold" {
+            if p.preset == ior::Preset::Gold {
                 // The measured RGB data (Johnson & Christy 1972), unpolarized, for colour.
-                let g = ior::GOLD_RGB;
+                let g = ior::Preset::Gold.data();
                 for (c, (name, col)) in [
                     ("R, 660 nm", RGBColor(200, 40, 40)),
                     ("R, 549 nm", RGBColor(40, 150, 40)),
@@ -295,9 +301,14 @@ fn fresnel_materials(dir: &Path) -> Res<PathBuf> {
                 );
             }
             let title = if p.k > 0.0 {
-                format!("{}: η = {} + {}i (seed table)", p.name, p.eta, p.k)
+                format!(
+                    "{}: η = {} + {}i (seed table)",
+                    p.preset.label(),
+                    p.eta,
+                    p.k
+                )
             } else {
-                format!("{}: η = {} (seed table)", p.name, p.eta)
+                format!("{}: η = {} (seed table)", p.preset.label(), p.eta)
             };
             let panel = Panel {
                 title: &title,
@@ -502,17 +513,18 @@ fn schlick_error(dir: &Path) -> Res<PathBuf> {
             &curves,
         )?;
         let metals = [
-            ior::GOLD_RGB,
-            ior::SILVER_RGB,
-            ior::COPPER_RGB,
-            ior::ALUMINIUM_RGB,
-            ior::IRON_RGB,
-            ior::CHROMIUM_RGB,
+            ior::Preset::Gold,
+            ior::Preset::Silver,
+            ior::Preset::Copper,
+            ior::Preset::Aluminium,
+            ior::Preset::Iron,
+            ior::Preset::Chromium,
         ];
         let curves: Vec<Curve> = metals
             .iter()
             .enumerate()
-            .map(|(i, m)| {
+            .map(|(i, p)| {
+                let m = p.data();
                 let (eta, k) = (m.eta[1], m.k[1]);
                 let f0 = fresnel::f0_from_complex_ior(eta, k);
                 let pts = degrees(0.0, 90.0, 360)
@@ -525,7 +537,11 @@ fn schlick_error(dir: &Path) -> Res<PathBuf> {
                     })
                     .collect();
                 Curve::new(
-                    format!("{} ({:.0} nm)", m.name, m.wavelengths_nm[1]),
+                    format!(
+                        "{} ({:.0} nm)",
+                        p.label(),
+                        m.wavelengths_nm.expect("measured")[1]
+                    ),
                     colour(i),
                     pts,
                 )

@@ -30,14 +30,14 @@ fn main() {
     for p in ior::SEED_TABLE {
         let talk = SEED_F0
             .iter()
-            .find(|(n, _)| *n == p.name)
+            .find(|(n, _)| *n == p.preset.label())
             .map_or("—".to_string(), |(_, v)| format!("{v:.3}"));
         println!(
             "| {} | {:.2} | {:.2} | {:.3} | {} |",
-            p.name,
+            p.preset.label(),
             p.eta,
             p.k,
-            p.f0(),
+            fresnel::f0_from_complex_ior(p.eta, p.k),
             talk
         );
     }
@@ -45,14 +45,15 @@ fn main() {
     println!("\n## Measured metals, one wavelength per channel\n");
     println!("| metal | λ (nm) | η (R, G, B) | κ (R, G, B) | F0 (R, G, B) | source |");
     println!("|---|---|---|---|---|---|");
-    for m in ior::METALS_RGB {
-        let f0 = m.f0();
+    for p in ior::Preset::METALS {
+        let (m, f0) = (p.data(), fresnel::f0_from_preset(p));
+        let nm = m.wavelengths_nm.expect("metals are measured");
         println!(
             "| {} | {:.0}/{:.0}/{:.0} | {:.3}, {:.3}, {:.3} | {:.3}, {:.3}, {:.3} | {:.3}, {:.3}, {:.3} | {} |",
-            m.name,
-            m.wavelengths_nm[0],
-            m.wavelengths_nm[1],
-            m.wavelengths_nm[2],
+            p.label(),
+            nm[0],
+            nm[1],
+            nm[2],
             m.eta[0],
             m.eta[1],
             m.eta[2],
@@ -69,24 +70,25 @@ fn main() {
     println!("\n## Reflectance against incidence angle (exact Fresnel / Schlick)\n");
     let angles = [0.0f64, 15.0, 30.0, 45.0, 60.0, 70.0, 80.0, 85.0, 89.0];
     let materials = [
-        ior::QUARTZ,
-        ior::WATER,
-        ior::SAPPHIRE,
-        ior::TITANIUM_DIOXIDE,
-        ior::GOLD,
-        ior::IRON,
-    ];
+        ior::Preset::Quartz,
+        ior::Preset::Water,
+        ior::Preset::Sapphire,
+        ior::Preset::TitaniumDioxide,
+        ior::Preset::Gold,
+        ior::Preset::Iron,
+    ]
+    .map(|p| p.seed().expect("in the seed table"));
     print!("| material |");
     for a in angles {
         print!(" {a:.0}° |");
     }
     println!("\n|---|{}", "---:|".repeat(angles.len()));
     for p in materials {
-        print!("| {} |", p.name);
+        print!("| {} |", p.preset.label());
         for a in angles {
             let c = a.to_radians().cos();
             let exact = fresnel::conductor(c, p.eta, p.k);
-            let schlick = fresnel::schlick(p.f0(), c);
+            let schlick = fresnel::schlick(fresnel::f0_from_complex_ior(p.eta, p.k), c);
             print!(" {exact:.3} / {schlick:.3} |");
         }
         println!();

@@ -634,7 +634,11 @@ fn fresnel_table() -> Table {
     seed.sort_by(|a, b| a.eta.total_cmp(&b.eta));
     for p in seed {
         dielectric_row(
-            &format!("  Schlick, seed preset {} (η = {})", p.name, p.eta),
+            &format!(
+                "  Schlick, seed preset {} (η = {})",
+                p.preset.label(),
+                p.eta
+            ),
             "cos θ ∈ [0, 1]",
             &[p.eta],
             Some(cost_schlick),
@@ -666,13 +670,9 @@ fn fresnel_table() -> Table {
 
     // Metals: cost of the FresnelTerm types with 3 channels, gold.
     let tc: Vec<f32> = (0..N_TIME).map(|i| lds(i, PHI1) as f32).collect();
-    let gold_c = Conductor::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB);
-    let gold_s = Schlick::<f32, 3>::from_complex_ior(
-        ior::GOLD_RGB.eta.map(|v| v as f32),
-        ior::GOLD_RGB.k.map(|v| v as f32),
-    )
-    .expect("valid preset");
-    let gold_f = F82Tint::<f32, 3>::from_rgb_preset(&ior::GOLD_RGB);
+    let gold_c = Conductor::<f32, 3>::from_preset(ior::Preset::Gold).expect("valid preset");
+    let gold_s = Schlick::<f32, 3>::from_preset(ior::Preset::Gold).expect("valid preset");
+    let gold_f = F82Tint::<f32, 3>::from_preset(ior::Preset::Gold).expect("valid preset");
     let cost_metal_schlick = time_pair(
         N_TIME,
         looper(&tc, |c: f32| gold_c.eval(c)),
@@ -684,10 +684,10 @@ fn fresnel_table() -> Table {
         looper(&tc, |c: f32| gold_f.eval(c)),
     );
     let channel = ["R", "G", "B"];
-    for m in ior::METALS_RGB {
-        let exact = Conductor::<f64, 3>::from_rgb_preset(m);
-        let schlick = Schlick::<f64, 3>::from_complex_ior(m.eta, m.k).expect("valid preset");
-        let f82 = F82Tint::<f64, 3>::from_rgb_preset(m);
+    for m in ior::Preset::METALS {
+        let exact = Conductor::<f64, 3>::from_preset(m).expect("valid preset");
+        let schlick = Schlick::<f64, 3>::from_preset(m).expect("valid preset");
+        let f82 = F82Tint::<f64, 3>::from_preset(m).expect("valid preset");
         let mut ws = Worst::new();
         let mut wf = Worst::new();
         for &c in &cosines {
@@ -698,13 +698,13 @@ fn fresnel_table() -> Table {
             }
         }
         let at = |(c, ch): (f64, usize)| format!("θ = {:.1}°, {}", deg(c), channel[ch]);
-        let f0 = m.f0();
+        let f0 = fresnel::f0_from_preset(m);
         let domain = format!(
             "cos θ ∈ [0, 1], worst of R, G, B (F0 = {:.3}, {:.3}, {:.3})",
             f0[0], f0[1], f0[2]
         );
         rows.push(Row::new(
-            &format!("Schlick (exact F0), {}", m.name),
+            &format!("Schlick (exact F0), {}", m.label()),
             "exact `conductor`",
             &domain,
             &ws,
@@ -713,7 +713,7 @@ fn fresnel_table() -> Table {
             Some(cost_metal_schlick),
         ));
         rows.push(Row::new(
-            &format!("F82-tint (`F82Tint::from_ior`), {}", m.name),
+            &format!("F82-tint (`F82Tint::from_ior`), {}", m.label()),
             "exact `conductor`",
             &domain,
             &wf,
