@@ -27,6 +27,9 @@
 //! | [`KajiyaKay`] | no (diffuse depends on wi only) | only the normalized variant |
 //! | [`Sum`], [`Layered`] | if both parts are | under a stated condition |
 //!
+//! The common microfacet compositions have names: [`GgxSmith`], [`GgxSmithSchlick`],
+//! [`GgxSmithConductor`], [`GgxSmithDielectric`], [`AnisoGgxSmith`], [`BeckmannSmith`].
+//!
 //! # Numerical floors
 //!
 //! Some published models divide by a cosine (`1/cos θi`, `1/√(cos θi cos θo)`,
@@ -37,6 +40,7 @@
 
 use crate::{Real, Vec3};
 
+mod aliases;
 mod ashikhmin_shirley;
 mod blinn_phong;
 mod cook_torrance;
@@ -49,6 +53,9 @@ mod shirley_diffuse;
 mod ward;
 
 pub use crate::normalization::Normalization;
+pub use aliases::{
+    AnisoGgxSmith, BeckmannSmith, GgxSmith, GgxSmithConductor, GgxSmithDielectric, GgxSmithSchlick,
+};
 pub use ashikhmin_shirley::AshikhminShirley;
 pub use blinn_phong::{
     BlinnPhongClassic, CosThetaI, CoupledLambert, MaxCos, NormalizedBlinnPhong,
