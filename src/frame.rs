@@ -25,9 +25,9 @@
 //! `Vec3<f32>: From<glam::Vec3>` copies components; it does not change frames. Passing
 //! world vectors of a y-up engine straight through `.into()` compiles and evaluates the
 //! model with the wrong axis as the normal: the model then reads `cos θ` from the world `z`
-//! component, so the result is silently wrong (for the gold Cook-Torrance of the
-//! guide 0.044 instead of 0.177 sr⁻¹, a factor of four), or zero
-//! when a world `z` happens to be negative. Convert with a frame: `frame.to_local(w)` or
+//! component, so the result is silently wrong — for the gold GGX material of the crate's
+//! front-page example 0.055 instead of 0.163 sr⁻¹ (issue 12 met 0.044 instead of 0.177) —
+//! or zero when a world `z` happens to be negative. Convert with a frame: `frame.to_local(w)` or
 //! `frame.eval(&model, wi, wo)`.
 //!
 //! # From a normal alone: the branchless basis of Duff et al.

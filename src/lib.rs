@@ -5,6 +5,42 @@
 //! terms and BRDF models — each formula written once and evaluated on `f32`, `f64` or SIMD
 //! lanes ([`f32x4`], [`f32x8`], [`f32x16`], [`f64x4`]) through the [`Real`] trait.
 //!
+//! ## Example
+//!
+//! A gold GGX microfacet material, evaluated at world-space directions of a y-up engine
+//! through the shading [`Frame`] of the surface normal:
+//!
+//! ```
+//! use brdf::{Brdf, Frame};
+//! use brdf::fresnel::Conductor;
+//! use brdf::ior::Preset;
+//! use brdf::masking::SmithHeightCorrelated;
+//! use brdf::models::GgxSmithConductor;
+//! use brdf::ndf::GgxIsotropic;
+//! use glam::Vec3;
+//!
+//! // Built once, validated once (bad parameters are an Err here, never a NaN later).
+//! let gold = GgxSmithConductor::new(
+//!     GgxIsotropic::new(0.3_f32)?,
+//!     Conductor::from_preset(Preset::Gold)?,
+//!     SmithHeightCorrelated,
+//! );
+//! let n = Vec3::Y; // the shading normal, world space
+//! let wi = Vec3::new(-0.4, 0.8, 0.45).normalize(); // towards the light
+//! let wo = Vec3::new(0.3, 0.9, 0.3).normalize(); // towards the viewer
+//! let f = Frame::from_normal(n).eval(&gold, wi, wo); // RGB, sr⁻¹, without the cosine
+//! let reflected = f.map(|c| c * wi.dot(n)); // × cos θi: radiance per unit irradiance
+//! assert!((f[0] - 0.1625).abs() < 1e-3 && f[0] > f[1] && f[1] > f[2]); // gold
+//! # let _ = reflected;
+//! # Ok::<(), brdf::Error>(())
+//! ```
+//!
+//! Models take directions in the local shading frame (next section); [`frame`] converts
+//! from world space. Passing world vectors straight in (`gold.eval(wi.into(), wo.into())`)
+//! compiles but reads world `z` as the normal: 0.055 instead of 0.163 above (see the
+//! [`frame`] docs). [`batch`] evaluates many direction pairs with SIMD; [`real::Splat`]
+//! puts a material on lanes; [`analysis`] integrates albedos and checks properties.
+//!
 //! ## Conventions
 //!
 //! These hold everywhere in the crate and are not repeated per function.
@@ -44,6 +80,18 @@
 //! * `serde`: material descriptions that load from files (`material::MaterialDesc`,
 //!   validated on load); enables `alloc`.
 //!
+//! ## Re-exported dependencies: glam 0.34, num-complex 0.4
+//!
+//! [`glam`] (0.34) appears in the API (`Vec3<f32>: From<glam::Vec3>`, `Vec3<f64>:
+//! From<glam::DVec3>`, [`batch::eval_glam`]) and [`num_complex`] (0.4) in the complex
+//! Fresnel amplitudes; both are re-exported, as `brdf::glam` and `brdf::num_complex`.
+//! An engine on another glam version has two different `glam::Vec3` types in its build:
+//! `brdf::Vec3::from(engine_vec)` then fails to compile with "the trait `From<glam::Vec3>`
+//! is not implemented for `brdf::Vec3<f32>`", and rustc adds that there are multiple
+//! different versions of crate `glam` in the dependency graph. Either build your vectors
+//! with `brdf::glam`, depend on glam 0.34 yourself, or convert through arrays, which do
+//! not depend on glam's version: `brdf::Vec3::from(engine_vec.to_array())`.
+//!
 //! ## References
 //!
 //! * Y. Gotanda, "本当のHDR表現へ — アーティストにも知ってほしいリフレクタンスの基礎" (Beyond a
@@ -82,6 +130,9 @@ pub mod normalization;
 pub mod real;
 pub mod vec3;
 
+pub use glam;
+pub use num_complex;
+
 pub use error::Error;
 pub use frame::Frame;
 pub use models::Brdf;
@@ -92,3 +143,41 @@ pub use vec3::Vec3;
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
+
+/// The guide's examples and type signatures (`docs/guide.md`), compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/guide.md")]
+pub struct GuideDoctests;
+
+#[cfg(test)]
+mod tests {
+    /// The versions of the re-exported dependencies stated in the crate docs and the README
+    /// are the ones in Cargo.toml.
+    use std::vec::Vec;
+
+    #[test]
+    fn reexported_versions_are_documented() {
+        let manifest = include_str!("../Cargo.toml");
+        let docs = include_str!("lib.rs");
+        let readme = include_str!("../README.md");
+        for (krate, name) in [("glam", "glam"), ("num-complex", "num-complex")] {
+            let line = manifest
+                .lines()
+                .find(|l| l.starts_with(&std::format!("{krate} = ")))
+                .unwrap_or_else(|| panic!("{krate} in [dependencies]"));
+            let v = line
+                .split("version = \"")
+                .nth(1)
+                .unwrap()
+                .split('"')
+                .next()
+                .unwrap();
+            // "0.34" or "0.4.6" → the compatible series, "0.34" / "0.4".
+            let series: Vec<&str> = v.split('.').take(2).collect();
+            let series = series.join(".");
+            let stated = std::format!("{name} {series}");
+            assert!(docs.contains(&stated), "crate docs do not state `{stated}`");
+            assert!(readme.contains(&stated), "README does not state `{stated}`");
+        }
+    }
+}
