@@ -8,11 +8,16 @@
 //! | [`SmithHeightCorrelated`] | `χ⁺ / (1 + Λ(wi) + Λ(wo))` (exact for Smith microsurfaces) | [`SmithLambda`] |
 //! | [`SmithSeparable`] | `χ⁺ G1(wi) G1(wo)`, `G1 = 1/(1 + Λ)` | [`SmithLambda`] |
 //! | [`SmithSeparableWalter`] | separable, Walter's rational Beckmann `G1` | [`Beckmann`] |
-//! | [`VCavity`] | `min(1, 2 cos θm cos θo/(wo·wm), 2 cos θm cos θi/(wi·wm))` | any [`Ndf`] |
+//! | [`VCavity`] | `min(1, 2 cos θm cos θo/(wo·wm), 2 cos θm cos θi/(wi·wm))` | nothing (any [`Ndf`]) |
 //! | [`SchlickGgx`] | `G1 = cos θ/(cos θ (1 − k) + k)`, `k = α/2`, separable | [`ProjectedAlpha`] |
 //! | [`HammonApprox`] | `V = 0.5 / lerp(2 cos θi cos θo, cos θi + cos θo, α)` | [`ProjectedAlpha`] |
-//! | [`Kelemen`] | `V = 1 / (4 (wi·wm)(wo·wm))` | any [`Ndf`] |
-//! | [`Implicit`] | `G2 = cos θi cos θo`, `V = 1/4` | any [`Ndf`] |
+//! | [`Kelemen`] | `V = 1 / (4 (wi·wm)(wo·wm))` | nothing (any [`Ndf`]) |
+//! | [`Implicit`] | `G2 = cos θi cos θo`, `V = 1/4` | nothing (any [`Ndf`]) |
+//!
+//! The terms that ignore the NDF ([`VCavity`], [`Kelemen`], [`Implicit`]) also evaluate
+//! without one: `VCavity::g2(wi, wo, wm)` and `VCavity::visibility(wi, wo, wm)` are
+//! associated functions, and their [`Masking`] implementation, for every NDF, forwards to
+//! them (bit for bit, tested). The method call `VCavity.g2(&ndf, wi, wo, wm)` is the trait's.
 //!
 //! `χ⁺` is 1 when `wi·wm > 0` and `wo·wm > 0`, else 0 (Heitz 2014, the microfacet visibility indicator): with `wm` the
 //! half vector of two upper-hemisphere directions it is 1 except for the degenerate
@@ -340,18 +345,25 @@ impl<R: Real> Masking<R, Beckmann<R>> for SmithSeparableWalter {
 ///
 /// # Examples
 ///
+/// Without an NDF, and as the masking term of a microfacet model (any NDF):
+///
 /// ```
-/// use brdf::{Vec3, ndf::Ggx, masking::{Masking, VCavity}};
-/// let ggx = Ggx::<f64>::new(0.5).unwrap();
+/// use brdf::{Vec3, ndf::Ggx, masking::{Masking, VCavity}, vec3::half_vector};
 /// let n = Vec3::new(0.0, 0.0, 1.0);
-/// assert_eq!(VCavity.g2(&ggx, n, n, n), 1.0);
+/// assert_eq!(VCavity::g2(n, n, n), 1.0);
+/// let (wi, wo) = (Vec3::new(0.8, 0.0, 0.6), Vec3::new(-0.6, 0.0, 0.8));
+/// let wm = half_vector(wi, wo);
+/// let ggx = Ggx::new(0.5_f64).unwrap();
+/// assert_eq!(VCavity.g2(&ggx, wi, wo, wm), VCavity::g2(wi, wo, wm));
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct VCavity;
 
-impl<R: Real, D: Ndf<R>> Masking<R, D> for VCavity {
+impl VCavity {
+    /// `G2(wi, wo, wm)` of the formula above, in `[0, 1]`; 0 unless `wi·wm > 0` and
+    /// `wo·wm > 0`. Needs no NDF (the [`Masking`] implementation forwards here).
     #[inline(always)]
-    fn g2(&self, _ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
+    pub fn g2<R: Real>(wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
         let two_nh = R::from_f64(2.0) * wm.z.max(R::zero());
         let (hi, ho) = (wi.dot(wm), wo.dot(wm));
         let go = two_nh * cos_clamped(wo) / ho.max(tiny());
@@ -360,8 +372,10 @@ impl<R: Real, D: Ndf<R>> Masking<R, D> for VCavity {
         R::select(front(wi, wo, wm), g, R::zero())
     }
 
+    /// The visibility `V = G2/(4 cos θi cos θo)` of the formula above, without the `0/0` at
+    /// grazing angles (denominators floored at 1e-30). Needs no NDF.
     #[inline(always)]
-    fn visibility(&self, _ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
+    pub fn visibility<R: Real>(wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
         let nh = wm.z.max(R::zero());
         let (ci, co) = (cos_clamped(wi), cos_clamped(wo));
         let (hi, ho) = (wi.dot(wm), wo.dot(wm));
@@ -370,6 +384,18 @@ impl<R: Real, D: Ndf<R>> Masking<R, D> for VCavity {
         let b = nh / (two * ci * ho).max(tiny());
         let c = nh / (two * co * hi).max(tiny());
         R::select(front(wi, wo, wm), a.min(b).min(c), R::zero())
+    }
+}
+
+impl<R: Real, D: Ndf<R>> Masking<R, D> for VCavity {
+    #[inline(always)]
+    fn g2(&self, _ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
+        Self::g2(wi, wo, wm)
+    }
+
+    #[inline(always)]
+    fn visibility(&self, _ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
+        Self::visibility(wi, wo, wm)
     }
 }
 
@@ -491,21 +517,44 @@ impl<R: Real, D: ProjectedAlpha<R>> Masking<R, D> for HammonApprox {
 /// Filament uses it for the clear-coat layer (`V_Kelemen`).
 ///
 /// Reference: C. Kelemen, L. Szirmay-Kalos, Eurographics 2001 short papers.
+///
+/// ```
+/// use brdf::{Vec3, masking::Kelemen, vec3::half_vector};
+/// let (wi, wo) = (Vec3::new(0.8_f64, 0.0, 0.6), Vec3::new(-0.6, 0.0, 0.8));
+/// let wm = half_vector(wi, wo);
+/// // No NDF needed: V = 1/(4 (wi·wm)²) for the half vector.
+/// assert!((Kelemen::visibility(wi, wo, wm) - 0.25 / wi.dot(wm).powi(2)).abs() < 1e-15);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Kelemen;
 
-impl<R: Real, D: Ndf<R>> Masking<R, D> for Kelemen {
+impl Kelemen {
+    /// `G2 = cos θi cos θo / ((wi·wm)(wo·wm))`, 0 unless `wi·wm > 0` and `wo·wm > 0`. Needs
+    /// no NDF (the [`Masking`] implementation forwards here).
     #[inline(always)]
-    fn g2(&self, _ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
+    pub fn g2<R: Real>(wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
         let den = (wi.dot(wm) * wo.dot(wm)).max(tiny());
         let g = cos_clamped(wi) * cos_clamped(wo) / den;
         R::select(front(wi, wo, wm), g, R::zero())
     }
 
+    /// `V = 1 / (4 (wi·wm)(wo·wm))`, 0 unless `wi·wm > 0` and `wo·wm > 0`. Needs no NDF.
     #[inline(always)]
-    fn visibility(&self, _ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
+    pub fn visibility<R: Real>(wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
         let den = (R::from_f64(4.0) * wi.dot(wm) * wo.dot(wm)).max(tiny());
         R::select(front(wi, wo, wm), den.recip(), R::zero())
+    }
+}
+
+impl<R: Real, D: Ndf<R>> Masking<R, D> for Kelemen {
+    #[inline(always)]
+    fn g2(&self, _ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
+        Self::g2(wi, wo, wm)
+    }
+
+    #[inline(always)]
+    fn visibility(&self, _ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
+        Self::visibility(wi, wo, wm)
     }
 }
 
@@ -520,18 +569,41 @@ impl<R: Real, D: Ndf<R>> Masking<R, D> for Kelemen {
 ///
 /// Reference: B. Karis, "Specular BRDF reference" (blog), 2013, `G_Implicit`; N. Hoffman,
 /// "Background: physics and math of shading", SIGGRAPH 2013 course.
+///
+/// ```
+/// use brdf::{Vec3, masking::Implicit};
+/// let (wi, wo) = (Vec3::new(0.8, 0.0, 0.6), Vec3::new(-0.6, 0.0, 0.8));
+/// assert_eq!(Implicit::g2(wi, wo), 0.6 * 0.8); // no NDF, no half vector
+/// assert_eq!(Implicit::visibility::<f64>(), 0.25);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Implicit;
+
+impl Implicit {
+    /// `G2 = max(0, cos θi) max(0, cos θo)`. Needs neither an NDF nor `wm` (the [`Masking`]
+    /// implementation forwards here).
+    #[inline(always)]
+    pub fn g2<R: Real>(wi: Vec3<R>, wo: Vec3<R>) -> R {
+        cos_clamped(wi) * cos_clamped(wo)
+    }
+
+    /// `V = 1/4`.
+    #[inline(always)]
+    #[must_use]
+    pub fn visibility<R: Real>() -> R {
+        R::from_f64(0.25)
+    }
+}
 
 impl<R: Real, D: Ndf<R>> Masking<R, D> for Implicit {
     #[inline(always)]
     fn g2(&self, _ndf: &D, wi: Vec3<R>, wo: Vec3<R>, _wm: Vec3<R>) -> R {
-        cos_clamped(wi) * cos_clamped(wo)
+        Self::g2(wi, wo)
     }
 
     #[inline(always)]
     fn visibility(&self, _ndf: &D, _wi: Vec3<R>, _wo: Vec3<R>, _wm: Vec3<R>) -> R {
-        R::from_f64(0.25)
+        Self::visibility()
     }
 }
 

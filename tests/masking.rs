@@ -390,6 +390,83 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(common::config(256))]
+
+    /// The terms that ignore the NDF evaluate without one, and their `Masking`
+    /// implementation is that evaluation for every NDF, bit for bit (f64 and f32), for the
+    /// half vector and for an arbitrary microfacet normal (either hemisphere); the values
+    /// are those of the published formulas, computed here independently.
+    #[test]
+    fn ndf_free_terms_need_no_ndf(
+        wi in common::direction(),
+        wo in common::direction(),
+        m in common::direction(),
+        flip in any::<bool>(),
+        a in 1e-4f64..=1.0,
+    ) {
+        let ggx = Ggx::<f64>::anisotropic(a, 0.5).unwrap();
+        let beck = Beckmann::<f64>::new(a).unwrap();
+        let other = if flip { Vec3::new(m.x, m.y, -m.z) } else { m };
+        for wm in [half_vector(wi, wo), other] {
+            let free = [
+                VCavity::g2(wi, wo, wm),
+                VCavity::visibility(wi, wo, wm),
+                Kelemen::g2(wi, wo, wm),
+                Kelemen::visibility(wi, wo, wm),
+                Implicit::g2(wi, wo),
+                Implicit::visibility(),
+            ];
+            let via_ggx = [
+                VCavity.g2(&ggx, wi, wo, wm),
+                VCavity.visibility(&ggx, wi, wo, wm),
+                Kelemen.g2(&ggx, wi, wo, wm),
+                Kelemen.visibility(&ggx, wi, wo, wm),
+                Implicit.g2(&ggx, wi, wo, wm),
+                Implicit.visibility(&ggx, wi, wo, wm),
+            ];
+            let via_beckmann = [
+                VCavity.g2(&beck, wi, wo, wm),
+                VCavity.visibility(&beck, wi, wo, wm),
+                Kelemen.g2(&beck, wi, wo, wm),
+                Kelemen.visibility(&beck, wi, wo, wm),
+                Implicit.g2(&beck, wi, wo, wm),
+                Implicit.visibility(&beck, wi, wo, wm),
+            ];
+            for i in 0..free.len() {
+                prop_assert_eq!(free[i].to_bits(), via_ggx[i].to_bits(), "term {}", i);
+                prop_assert_eq!(free[i].to_bits(), via_beckmann[i].to_bits(), "term {}", i);
+            }
+            // f32, against the trait on an f32 NDF.
+            let (wi32, wo32, wm32) = (common::to_f32(wi), common::to_f32(wo), common::to_f32(wm));
+            let g32 = Ggx::<f32>::new(a as f32).unwrap();
+            prop_assert_eq!(
+                VCavity::g2(wi32, wo32, wm32).to_bits(),
+                VCavity.g2(&g32, wi32, wo32, wm32).to_bits()
+            );
+            prop_assert_eq!(
+                Kelemen::visibility(wi32, wo32, wm32).to_bits(),
+                Kelemen.visibility(&g32, wi32, wo32, wm32).to_bits()
+            );
+            // The formulas (Blinn 1977 / Heitz 2014; Kelemen & Szirmay-Kalos 2001).
+            let (hi, ho) = (wi.dot(wm), wo.dot(wm));
+            let front = hi > 0.0 && ho > 0.0;
+            let nh = wm.z.max(0.0);
+            let vc = (2.0 * nh * wo.z / ho).min(2.0 * nh * wi.z / hi).min(1.0);
+            let ke = wi.z * wo.z / (hi * ho);
+            if front && hi > 1e-12 && ho > 1e-12 {
+                prop_assert!((free[0] - vc).abs() <= 1e-12 * vc.max(1.0), "{} vs {}", free[0], vc);
+                prop_assert!((free[2] - ke).abs() <= 1e-12 * ke.max(1.0), "{} vs {}", free[2], ke);
+            } else if !front {
+                prop_assert_eq!(free[0], 0.0);
+                prop_assert_eq!(free[2], 0.0);
+            }
+            prop_assert_eq!(free[4], wi.z * wo.z);
+            prop_assert_eq!(free[5], 0.25);
+        }
+    }
+}
+
 #[test]
 fn g1_is_one_at_normal_incidence_and_zero_at_grazing() {
     let n = Vec3::new(0.0, 0.0, 1.0);
