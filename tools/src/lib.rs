@@ -145,19 +145,73 @@ pub fn xml_escape(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// Writes `pixmap` as PNG to `path`, creating the parent folder, and returns the path.
+/// The width in pixels of `text` set in DejaVu Sans at `font_size` px (`bold` or regular),
+/// measured by laying it out with the embedded font.
+#[must_use]
+pub fn text_width(text: &str, font_size: f32, bold: bool) -> f32 {
+    if text.trim().is_empty() {
+        return 0.0;
+    }
+    let weight = if bold { "bold" } else { "normal" };
+    let svg = format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100"><text x="0" y="50" font-family="DejaVu Sans" font-size="{font_size}" font-weight="{weight}">{}</text></svg>"#,
+        xml_escape(text)
+    );
+    parse_svg(&svg).root().bounding_box().width()
+}
+
+/// Breaks `text` at spaces into lines no wider than `max_width` px ([`text_width`]); a
+/// single word wider than that stays on its own line. Existing line breaks are kept.
+#[must_use]
+pub fn wrap_text(text: &str, font_size: f32, bold: bool, max_width: f32) -> Vec<String> {
+    let mut lines = Vec::new();
+    for paragraph in text.split('\n') {
+        let mut line = String::new();
+        for word in paragraph.split(' ').filter(|w| !w.is_empty()) {
+            let candidate = if line.is_empty() {
+                word.to_owned()
+            } else {
+                format!("{line} {word}")
+            };
+            if line.is_empty() || text_width(&candidate, font_size, bold) <= max_width {
+                line = candidate;
+            } else {
+                lines.push(std::mem::replace(&mut line, word.to_owned()));
+            }
+        }
+        lines.push(line);
+    }
+    lines
+}
+
+/// Writes `pixmap` as PNG to `path`, creating the parent folder, and returns the path; the
+/// error names the path and the reason.
 ///
-/// # Panics
-/// If the file cannot be written (the program reports it and stops).
-pub fn save_png(pixmap: &tiny_skia::Pixmap, path: &Path) -> PathBuf {
+/// # Errors
+/// If the folder cannot be created or the file cannot be written.
+pub fn save_png(pixmap: &tiny_skia::Pixmap, path: &Path) -> Result<PathBuf, String> {
     if let Some(parent) = path.parent() {
         std::fs::create_dir_all(parent)
-            .unwrap_or_else(|e| panic!("cannot create {}: {e}", parent.display()));
+            .map_err(|e| format!("cannot create {}: {e}", parent.display()))?;
     }
     pixmap
         .save_png(path)
-        .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
-    path.to_path_buf()
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    Ok(path.to_path_buf())
+}
+
+/// Creates the output folder `dir` (and its parents) and checks that a file can be written
+/// in it, so that a program fails before its work rather than after.
+///
+/// # Errors
+/// If the folder cannot be created or is not writable (the message names it).
+pub fn prepare_out_dir(dir: &Path) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    let probe = dir.join(format!(".brdf-tools-write-test-{}", std::process::id()));
+    std::fs::write(&probe, b"").map_err(|e| format!("cannot write in {}: {e}", dir.display()))?;
+    // Removing the probe can only fail if someone else removed it first.
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -280,9 +280,14 @@ pub fn compose(
     let left = if has_row_labels { 170 } else { GAP };
     let cell_w = size + GAP;
     let cell_h = size + CAPTION + GAP;
-    let sub_lines: Vec<&str> = grid.subtitle.split('\n').collect();
-    let header = 34 + 15 * sub_lines.len();
     let width = (left + cols * cell_w).max(520);
+    // The header is wrapped to the image width (long material paths and captions would
+    // otherwise run off the right edge).
+    let text_w = (width - 2 * GAP) as f32;
+    let title_lines = super::wrap_text(&grid.title, 16.0, true, text_w);
+    let sub_lines = super::wrap_text(&grid.subtitle, 11.5, false, text_w);
+    let title_h = 20 * title_lines.len();
+    let header = 14 + title_h + 15 * sub_lines.len();
     let height = header + grid.rows.len() * cell_h;
     let mut pixmap = resvg::tiny_skia::Pixmap::new(width as u32, height as u32).expect("size");
     let bg = display.encode(background);
@@ -325,14 +330,17 @@ pub fn compose(
     let mut svg = format!(
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="DejaVu Sans">"#
     );
-    svg += &format!(
-        r#"<text x="{GAP}" y="21" font-size="16" font-weight="bold" fill="{ink}">{}</text>"#,
-        esc(&grid.title)
-    );
+    for (i, line) in title_lines.iter().enumerate() {
+        svg += &format!(
+            r#"<text x="{GAP}" y="{}" font-size="16" font-weight="bold" fill="{ink}">{}</text>"#,
+            21 + 20 * i,
+            esc(line)
+        );
+    }
     for (i, line) in sub_lines.iter().enumerate() {
         svg += &format!(
             r#"<text x="{GAP}" y="{}" font-size="11.5" fill="{faint}">{}</text>"#,
-            40 + 15 * i,
+            20 + title_h + 15 * i,
             esc(line)
         );
     }

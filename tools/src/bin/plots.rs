@@ -218,7 +218,7 @@ fn figure(
     Ok(brdf_tools::save_png(
         &pixmap,
         &dir.join(format!("{name}.png")),
-    ))
+    )?)
 }
 
 /// The y range spanned by `curves`, with a margin.
@@ -926,6 +926,11 @@ fn main() {
         .value("--out")
         .map(PathBuf::from)
         .unwrap_or_else(|| brdf_tools::default_out_dir().join("plots"));
+    // Fail before plotting if the images cannot be written.
+    if let Err(e) = brdf_tools::prepare_out_dir(&out) {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
     let start = std::time::Instant::now();
     let jobs: [(&str, PlotFn); 6] = [
         ("Fresnel reflectance of the presets", fresnel_materials),

@@ -42,7 +42,9 @@ OPTIONS:
     --only NAME       render only the grid NAME (repeatable): blinn_phong, presets,
                       roughness, furnace
     --material FILE   render the material described by FILE (TOML, see
-                      docs/materials/); needs `--features serde`; repeatable
+                      docs/materials/); needs `--features serde`; repeatable; alone it
+                      renders only the materials, with --only the named grids as well;
+                      files with the same name get distinct images (material-NAME-2.png)
     -h, --help        this text
 
 Tone mapping: exposure, ACES filmic fit (Narkowicz 2016) per channel, exact sRGB OETF.";
@@ -530,39 +532,50 @@ fn main() {
 
     let mut specs = Vec::new();
     let materials = args.all("--material");
-    if materials.is_empty() {
-        let only = args.all("--only");
-        let all: [(&str, GridFn); 4] = [
-            ("blinn_phong", blinn_phong),
-            ("presets", presets),
-            ("roughness", roughness),
-            ("furnace", furnace),
-        ];
-        for name in &only {
-            if !all.iter().any(|(n, _)| n == name) {
-                eprintln!("error: unknown grid `{name}`\n\n{USAGE}");
-                std::process::exit(2);
-            }
+    let only = args.all("--only");
+    let all: [(&str, GridFn); 4] = [
+        ("blinn_phong", blinn_phong),
+        ("presets", presets),
+        ("roughness", roughness),
+        ("furnace", furnace),
+    ];
+    for name in &only {
+        if !all.iter().any(|(n, _)| n == name) {
+            eprintln!("error: unknown grid `{name}`\n\n{USAGE}");
+            std::process::exit(2);
         }
-        for (name, make) in all {
-            if only.is_empty() || only.contains(&name) {
-                specs.push(make(ctx));
-            }
+    }
+    // The built-in grids: those named by --only, or all of them when neither --only nor
+    // --material is given (with --material alone, only the materials).
+    for (name, make) in all {
+        if only.contains(&name) || (only.is_empty() && materials.is_empty()) {
+            specs.push(make(ctx));
         }
-    } else {
-        for m in materials {
-            match material(ctx, Path::new(m)) {
-                Ok(s) => specs.push(s),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    std::process::exit(1);
-                }
+    }
+    for m in &materials {
+        match material(ctx, Path::new(m)) {
+            Ok(s) => specs.push(s),
+            Err(e) => {
+                eprintln!("error: {e}");
+                std::process::exit(1);
             }
         }
     }
+    unique_file_names(&mut specs);
 
+    // Fail before rendering if the images cannot be written.
+    if let Err(e) = brdf_tools::prepare_out_dir(&out) {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
     let start = Instant::now();
-    let written = render_all(specs, &out);
+    let written = match render_all(specs, &out) {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!("\nerror: {e}");
+            std::process::exit(1);
+        }
+    };
     eprintln!();
     for p in &written {
         println!("wrote {}", p.display());
@@ -575,9 +588,29 @@ fn main() {
     );
 }
 
+/// Makes the output file names distinct: two material files with the same stem
+/// (`a/gold.toml`, `b/gold.toml`) would otherwise write the same image. The second becomes
+/// `material-gold-2`, the third `material-gold-3`, and so on (skipping names already taken).
+fn unique_file_names(specs: &mut [Spec]) {
+    let mut taken = std::collections::HashSet::new();
+    for spec in specs.iter_mut() {
+        if !taken.insert(spec.file.clone()) {
+            let base = spec.file.clone();
+            let mut n = 2;
+            while !taken.insert(format!("{base}-{n}")) {
+                n += 1;
+            }
+            spec.file = format!("{base}-{n}");
+        }
+    }
+}
+
 /// Renders every sphere of every grid on all cores, with progress on stderr, then writes
 /// one PNG per grid.
-fn render_all(specs: Vec<Spec>, out: &Path) -> Vec<PathBuf> {
+///
+/// # Errors
+/// If an image cannot be written (the message names the file).
+fn render_all(specs: Vec<Spec>, out: &Path) -> Result<Vec<PathBuf>, String> {
     // Flatten the jobs, remembering where each image goes.
     let mut jobs: Vec<(usize, usize, usize, Job)> = Vec::new();
     let mut shells = Vec::new();
@@ -645,7 +678,7 @@ fn render_all(specs: Vec<Spec>, out: &Path) -> Vec<PathBuf> {
         written.push(brdf_tools::save_png(
             &pixmap,
             &out.join(format!("{file}.png")),
-        ));
+        )?);
     }
-    written
+    Ok(written)
 }

@@ -11,6 +11,18 @@
 
 use brdf::{fresnel, ior, normalization};
 
+const USAGE: &str = "\
+Prints the tables of the seed talk (\"Basic of Reflectance\", tri-Ace 2009), recomputed by
+the brdf crate, as Markdown on standard output: the materials' normal-incidence
+reflectance, the measured RGB metals, reflectance against incidence angle (exact Fresnel
+and Schlick) and the Blinn-Phong normalization factor, exact and fitted.
+
+USAGE:
+    cargo run --release -p brdf-tools --bin tables [-- OPTIONS]
+
+OPTIONS:
+    -h, --help        this text";
+
 /// The normal-incidence reflectances printed in the talk's IOR table.
 const SEED_F0: &[(&str, f64)] = &[
     ("iron", 0.164),
@@ -21,6 +33,8 @@ const SEED_F0: &[(&str, f64)] = &[
 ];
 
 fn main() {
+    // No options besides --help: anything else is an error (exit status 2).
+    let _ = brdf_tools::Args::parse(&[], &[], USAGE);
     println!("# brdf: the tables of \"Basic of Reflectance\" (tri-Ace, 2009)\n");
 
     println!("## Normal-incidence reflectance of the talk's materials\n");

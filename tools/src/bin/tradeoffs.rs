@@ -29,6 +29,18 @@
 //!   auto-vectorize: that is part of the cost being compared.
 
 use std::hint::black_box;
+
+const USAGE: &str = "\
+Measures, for every approximation of the brdf crate, its maximum absolute and relative
+error against the exact path over a stated domain and its cost relative to the exact
+path, and prints Markdown tables on standard output (docs/tradeoffs.md holds one run).
+Run it on an otherwise idle machine for meaningful timings.
+
+USAGE:
+    cargo run --release -p brdf-tools --bin tradeoffs [-- OPTIONS]
+
+OPTIONS:
+    -h, --help        this text";
 use std::time::Instant;
 
 use brdf::batch;
@@ -1573,6 +1585,8 @@ fn print_table(t: &Table) -> usize {
 }
 
 fn main() {
+    // No options besides --help: anything else is an error (exit status 2).
+    let _ = brdf_tools::Args::parse(&[], &[], USAGE);
     let start = Instant::now();
     println!("## Speed versus accuracy (`cargo run --release -p brdf-tools --bin tradeoffs`)\n");
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
