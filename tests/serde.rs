@@ -333,6 +333,44 @@ fn presets_load_by_name() {
     }
 }
 
+/// The key names the docs give for the normalizations load, and serialize back to the
+/// documented spelling; the older spellings (serde's snake case of `TriAce2009Fit`) still
+/// load. Preset names in files are those of `Preset::name` / `Preset::from_name`.
+#[test]
+fn documented_key_names_load() {
+    let cases = [
+        ("tri_ace_2009_fit", NormalizationDesc::TriAce2009Fit, true),
+        ("tri_ace2009_fit", NormalizationDesc::TriAce2009Fit, false),
+        ("tri_ace_2010_fit", NormalizationDesc::TriAce2010Fit, true),
+        ("tri_ace2010_fit", NormalizationDesc::TriAce2010Fit, false),
+        ("tri_ace_exact", NormalizationDesc::TriAceExact, true),
+        ("unnormalized", NormalizationDesc::Unnormalized, true),
+    ];
+    for (key, want, canonical) in cases {
+        let text = format!(
+            "model = \"normalized_blinn_phong\"\nrd = 0.5\nrs = 0.5\nf0 = 0.04\nshininess = 64\nnormalization = \"{key}\"\n"
+        );
+        let desc: MaterialDesc = toml::from_str(&text).unwrap_or_else(|e| panic!("{key}: {e}"));
+        let MaterialDesc::NormalizedBlinnPhong(d) = desc else {
+            panic!("{key}: not a normalized Blinn-Phong")
+        };
+        assert_eq!(d.normalization, want, "{key}");
+        if canonical {
+            assert_eq!(serde_json::to_string(&want).unwrap(), format!("\"{key}\""));
+        }
+    }
+    // The default is the seed's fit, and it is what the docs call `tri_ace_2009_fit`.
+    assert_eq!(
+        serde_json::to_string(&NormalizationDesc::default()).unwrap(),
+        "\"tri_ace_2009_fit\""
+    );
+    for p in Preset::ALL {
+        let name = serde_json::to_string(&p).unwrap();
+        assert_eq!(name, format!("\"{}\"", p.name()));
+        assert_eq!(Preset::from_name(p.name()), Some(p));
+    }
+}
+
 #[test]
 fn shipped_material_files_load() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/materials");

@@ -340,10 +340,15 @@ pub enum NormalizationDesc {
         #[serde(deserialize_with = "field::offset")]
         offset: f64,
     },
-    /// [`Normalization::TRI_ACE_2009_FIT`], the seed's `(s + 2.04)/(8π)` (default).
+    /// [`Normalization::TRI_ACE_2009_FIT`], the seed's `(s + 2.04)/(8π)` (default). In files
+    /// `"tri_ace_2009_fit"` (also accepted: `"tri_ace2009_fit"`, serde's own snake case of the
+    /// variant name, which earlier versions required).
     #[default]
+    #[serde(rename = "tri_ace_2009_fit", alias = "tri_ace2009_fit")]
     TriAce2009Fit,
-    /// [`Normalization::TriAce2010Fit`].
+    /// [`Normalization::TriAce2010Fit`]. In files `"tri_ace_2010_fit"` (also accepted:
+    /// `"tri_ace2010_fit"`).
+    #[serde(rename = "tri_ace_2010_fit", alias = "tri_ace2010_fit")]
     TriAce2010Fit,
     /// [`Normalization::BlinnPhongNdf`].
     BlinnPhongNdf,
