@@ -2,6 +2,8 @@
 //! or from an independent one-dimensional reduction, plus the reciprocity and furnace checks.
 mod common;
 
+use approx::assert_abs_diff_eq;
+
 use brdf::Vec3;
 use brdf::analysis::{
     AlbedoConfig, DirectionGrid, F32Brdf, HemisphericalConfig, cosine_hemisphere,
@@ -779,7 +781,11 @@ fn direction_grid_is_deterministic_unit_and_reaches_grazing() {
     let theta = |w: &Vec3<f64>| w.z.acos();
     let step = theta(&dirs[1]);
     for k in 1..6 {
-        assert!((theta(&dirs[1 + (k - 1) * 5]) - k as f64 * step).abs() < 1e-12);
+        assert_abs_diff_eq!(
+            theta(&dirs[1 + (k - 1) * 5]),
+            k as f64 * step,
+            epsilon = 1e-12
+        );
     }
     assert_eq!(grid.pairs().count(), 31 * 30 / 2);
     assert!(DirectionGrid::new(0, 5, 0.0).is_empty());
@@ -809,7 +815,7 @@ fn warps_cover_the_hemisphere_with_their_densities() {
     assert_eq!(cosine_hemisphere(1.0f64, 0.3).z, 0.0);
     // Fibonacci: equal-area mean of cos θ is 1/2 exactly (midpoint rule on a linear function).
     let mean = fibonacci_hemisphere(500).map(|w| w.z).sum::<f64>() / 500.0;
-    assert!((mean - 0.5).abs() < 1e-12);
+    assert_abs_diff_eq!(mean, 0.5, epsilon = 1e-12);
 }
 
 #[test]

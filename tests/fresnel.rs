@@ -4,6 +4,8 @@
 //! `FresnelTerm` types and their validation, extremes on f32/f64, and SIMD lanes.
 mod common;
 
+use approx::assert_abs_diff_eq;
+
 use brdf::fresnel::{self, *};
 use brdf::{Error, ior};
 use num_complex::Complex;
@@ -76,7 +78,7 @@ fn complex_reference(cos_i: f64, eta: Complex<f64>) -> (Complex<f64>, Complex<f6
 #[test]
 fn dielectric_reference_values() {
     // Air → glass at normal incidence: 4 %.
-    assert!((dielectric(1.0f64, 1.5) - 0.04).abs() < 1e-16);
+    assert_abs_diff_eq!(dielectric(1.0f64, 1.5), 0.04, epsilon = 1e-16);
     // Brewster's angle tan θB = η: r_p = 0, so r = r_s²/2.
     let cb = (1.0f64 / 1.5).atan().sin(); // cos θB = 1/√(1 + η²)
     let a = dielectric_amplitudes(cb, 1.5);
@@ -112,7 +114,7 @@ fn amplitude_sign_convention_and_pbrt_mapping() {
         let r_parl = (eta * c - ct) / (eta * c + ct);
         let r_perp = (c - eta * ct) / (c + eta * ct);
         assert!((a.r_p + r_parl).abs() < 1e-15 && (a.r_s - r_perp).abs() < 1e-15);
-        assert!((a.cos_theta_t - ct).abs() < 1e-15);
+        assert_abs_diff_eq!(a.cos_theta_t, ct, epsilon = 1e-15);
     }
     // Under TIR: critical-angle values, no transmission.
     let a = dielectric_amplitudes(0.2f64, 1.0 / 1.5);
@@ -213,7 +215,7 @@ proptest! {
 #[test]
 fn conductor_reference_values() {
     // F0 of the seed's gold.
-    assert!((conductor(1.0f64, 0.34, 3.2) - 0.887).abs() < 5e-4);
+    assert_abs_diff_eq!(conductor(1.0f64, 0.34, 3.2), 0.887, epsilon = 5e-4);
     // Grazing: 1 for every conductor.
     assert_eq!(conductor(0.0, 0.2, 3.5), 1.0);
     // Index-matched grazing: the limit 0 along η = 1.
@@ -328,7 +330,7 @@ fn cook_torrance_seed_transcription_is_wrong() {
             * (1.0 + (c * (g + c) - 1.0).powi(2) / (c * (g - c) + 1.0).powi(2))
     };
     let (f0, literal) = (cook_torrance_gc(1.0f64, 1.5), seed(1.0, 1.5));
-    assert!((f0 - 0.04).abs() < 1e-16);
+    assert_abs_diff_eq!(f0, 0.04, epsilon = 1e-16);
     assert!((literal - 0.04).abs() > 0.01, "{literal}");
     // TIR: g² < 0 → 1.
     assert_eq!(cook_torrance_gc(0.2, 1.0 / 1.5), 1.0);
@@ -368,9 +370,13 @@ fn schlick_end_points_and_f90() {
 #[test]
 fn f0_conversions() {
     for eta in [1.0f64, 1.33, 1.5, 2.4, 0.5, 1e-3, 1e3] {
-        assert!((f0_from_ior(eta) - dielectric(1.0, eta)).abs() < 1e-15);
-        assert!((f0_from_ior(eta) - f0_from_ior(1.0 / eta)).abs() < 1e-15);
-        assert!((f0_from_complex_ior(eta, 0.0) - f0_from_ior(eta)).abs() < 1e-15);
+        assert_abs_diff_eq!(f0_from_ior(eta), dielectric(1.0, eta), epsilon = 1e-15);
+        assert_abs_diff_eq!(f0_from_ior(eta), f0_from_ior(1.0 / eta), epsilon = 1e-15);
+        assert_abs_diff_eq!(
+            f0_from_complex_ior(eta, 0.0),
+            f0_from_ior(eta),
+            epsilon = 1e-15
+        );
         if (1.0..1e3).contains(&eta) {
             assert!(
                 (ior_from_f0(f0_from_ior(eta)) - eta).abs() < 1e-12 * eta,
@@ -379,17 +385,25 @@ fn f0_conversions() {
         }
     }
     for (n, k) in [(0.34f64, 3.2f64), (0.2, 3.5), (2.0, 1.0), (1e-3, 100.0)] {
-        assert!((f0_from_complex_ior(n, k) - conductor(1.0, n, k)).abs() < 1e-15);
+        assert_abs_diff_eq!(
+            f0_from_complex_ior(n, k),
+            conductor(1.0, n, k),
+            epsilon = 1e-15
+        );
     }
     assert_eq!(ior_from_f0(0.0), 1.0);
-    assert!((ior_from_f0(0.04f64) - 1.5).abs() < 1e-15);
+    assert_abs_diff_eq!(ior_from_f0(0.04f64), 1.5, epsilon = 1e-15);
     // As F0 → 1, η ≈ 4/(1 − F0).
     let f0 = 1.0f64 - 1e-6;
-    assert!((ior_from_f0(f0) * (1.0 - f0) - 4.0).abs() < 1e-5);
+    assert_abs_diff_eq!(ior_from_f0(f0) * (1.0 - f0), 4.0, epsilon = 1e-5);
     assert_eq!(ior_from_f0(1.0), f64::INFINITY);
     // The validated constructor.
     assert!(Dielectric::<f64>::from_f0(0.04).is_ok());
-    assert!((Dielectric::<f32>::from_f0(0.04).unwrap().eta() - 1.5).abs() < 1e-6);
+    assert_abs_diff_eq!(
+        Dielectric::<f32>::from_f0(0.04).unwrap().eta(),
+        1.5,
+        epsilon = 1e-6
+    );
     assert!(Dielectric::<f32>::from_f0(1.0 - f32::EPSILON / 2.0).is_ok());
     assert_eq!(
         Dielectric::<f64>::from_f0(1.0),
@@ -575,14 +589,18 @@ fn fresnel_terms_match_free_functions() {
     // Constructors from presets and from the artist parametrization.
     let e = ior::Preset::Gold.seed().unwrap();
     let g = Conductor::new([e.eta as f32], [e.k as f32]).unwrap();
-    assert!((g.eval(1.0)[0] - 0.887).abs() < 5e-4);
+    assert_abs_diff_eq!(g.eval(1.0)[0], 0.887, epsilon = 5e-4);
     let a =
         Conductor::<f64, 3>::from_reflectivity_edge_tint([0.9, 0.7, 0.4], [0.2, 0.5, 0.9]).unwrap();
     let f0 = a.eval(1.0);
     assert!((f0[0] - 0.9).abs() < 1e-12 && (f0[2] - 0.4).abs() < 1e-12);
     let sc = Schlick::<f64, 2>::from_complex_ior([0.34, 1.5], [3.2, 0.0]).unwrap();
-    assert!((sc.f0()[0] - conductor(1.0, 0.34, 3.2)).abs() < 1e-15);
-    assert!((Schlick::<f32, 1>::from_ior([1.5]).unwrap().f0()[0] - 0.04).abs() < 1e-8);
+    assert_abs_diff_eq!(sc.f0()[0], conductor(1.0, 0.34, 3.2), epsilon = 1e-15);
+    assert_abs_diff_eq!(
+        Schlick::<f32, 1>::from_ior([1.5]).unwrap().f0()[0],
+        0.04,
+        epsilon = 1e-8
+    );
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! the preset constructors of `fresnel`.
 mod common;
 
-use approx::assert_relative_eq;
+use approx::{assert_abs_diff_eq, assert_relative_eq};
 use brdf::fresnel::{
     Conductor, Dielectric, F82Tint, FresnelTerm, Schlick, conductor, dielectric,
     f0_from_complex_ior, f0_from_preset,
@@ -35,9 +35,9 @@ fn seed_normal_incidence_table() {
         );
         // Same through the exact Fresnel at normal incidence, and through the dielectric
         // presets (which take the seed's value).
-        assert!((conductor(1.0, p.eta, p.k) - f0).abs() < 1e-15);
+        assert_abs_diff_eq!(conductor(1.0, p.eta, p.k), f0, epsilon = 1e-15);
         if p.k == 0.0 {
-            assert!((dielectric(1.0, p.eta) - f0).abs() < 1e-15);
+            assert_abs_diff_eq!(dielectric(1.0, p.eta), f0, epsilon = 1e-15);
         }
         if !p.preset.is_conductor() {
             assert_eq!(f0_from_preset(p.preset), [f0; 3]);
@@ -138,7 +138,7 @@ fn metal_presets_are_valid_and_documented() {
         let f = c.eval(0.5);
         assert!(f.iter().all(|x| (0.0..=1.0).contains(x)));
         for (got, want) in c.eval(1.0).into_iter().zip(f0_from_preset(p)) {
-            assert!((f64::from(got) - want).abs() < 1e-6);
+            assert_abs_diff_eq!(f64::from(got), want, epsilon = 1e-6);
         }
     }
 }

@@ -3,6 +3,8 @@
 #![allow(clippy::too_many_arguments)]
 mod common;
 
+use approx::assert_abs_diff_eq;
+
 use brdf::masking::{
     self, HammonApprox, Implicit, Kelemen, Masking, SchlickGgx, SmithHeightCorrelated,
     SmithSeparable, SmithSeparableWalter, VCavity,
@@ -67,8 +69,12 @@ fn reference_erf_is_self_consistent() {
             "{x}"
         );
     }
-    assert!((erf_ref(1.0) - 0.842_700_792_949_714_9).abs() < 1e-15);
-    assert!((erfc_ref(5.0) / 1.537_459_794_428_034_8e-12 - 1.0).abs() < 1e-13);
+    assert_abs_diff_eq!(erf_ref(1.0), 0.842_700_792_949_714_9, epsilon = 1e-15);
+    assert_abs_diff_eq!(
+        erfc_ref(5.0) / 1.537_459_794_428_034_8e-12,
+        1.0,
+        epsilon = 1e-13
+    );
 }
 
 #[test]

@@ -7,6 +7,8 @@
 //! polar breaks so that lobes down to ~1e-3 rad wide are resolved.
 mod common;
 
+use approx::assert_abs_diff_eq;
+
 use brdf::fresnel::{Conductor, Dielectric, Schlick};
 use brdf::masking::{Implicit, SmithHeightCorrelated, SmithSeparable, VCavity};
 use brdf::models::*;
@@ -800,7 +802,7 @@ fn lafortune_albedo_within_its_bound() {
             }],
         )
         .unwrap();
-        assert!((m.energy_bound()[0] - 1.0).abs() < 2e-9);
+        assert_abs_diff_eq!(m.energy_bound()[0], 1.0, epsilon = 2e-9);
         assert_eq!(m.properties().energy, Energy::Conserving);
         for th in THETAS {
             let wo = dir(th, 30.0);
@@ -925,7 +927,7 @@ fn sum_and_layered_energy() {
         Lambert::<f64, 1>::new([0.5]).unwrap(),
     );
     let a = albedo_view(&ch0(&s), dir(45.0, 0.0));
-    assert!((a - 1.0).abs() < 1e-6);
+    assert_abs_diff_eq!(a, 1.0, epsilon = 1e-6);
     assert!(matches!(
         s.properties().energy,
         Energy::ConservingWhen { .. }

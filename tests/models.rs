@@ -3,6 +3,8 @@
 //! (to lanes, to `F32Fma`, to `f64`).
 mod common;
 
+use approx::assert_abs_diff_eq;
+
 use brdf::Vec3;
 use brdf::fresnel::{Conductor, Dielectric, F82Tint, FresnelTerm, Schlick};
 use brdf::masking::{HammonApprox, Masking, SmithHeightCorrelated, SmithSeparable, VCavity};
@@ -317,10 +319,10 @@ fn shirley_diffuse_value_and_seed_discrepancy() {
     // The paper's form (1 − R0) in the numerator, at normal incidence and view.
     let m = ShirleyDiffuse::<f64, 1>::new([1.0], [0.5]).unwrap();
     let n = V::new(0.0, 0.0, 1.0);
-    assert!((m.eval(n, n)[0] - 21.0 / (20.0 * PI) * 0.5).abs() < 1e-15);
+    assert_abs_diff_eq!(m.eval(n, n)[0], 21.0 / (20.0 * PI) * 0.5, epsilon = 1e-15);
     // The seed's literal 21/(20π(1 − F0)) would be 4× larger here.
     let literal = 21.0 / (20.0 * PI * (1.0 - 0.5));
-    assert!((literal / m.eval(n, n)[0] - 4.0).abs() < 1e-12);
+    assert_abs_diff_eq!(literal / m.eval(n, n)[0], 4.0, epsilon = 1e-12);
 }
 
 #[test]
@@ -331,7 +333,7 @@ fn kajiya_kay_peak_is_on_the_mirror_cone() {
     for phi in [0.3f64, 1.0, 2.0] {
         let r = (1.0 - 0.25f64).sqrt();
         let wo = V::new(-0.5, r * phi.cos(), r * phi.sin());
-        assert!((m.eval(wi, wo)[0] - 1.0).abs() < 1e-12);
+        assert_abs_diff_eq!(m.eval(wi, wo)[0], 1.0, epsilon = 1e-12);
     }
     // Off the cone it falls: t·wo = +t·wi (the paper's sign convention read literally).
     let wo = V::new(0.5, -0.5, 0.5f64.sqrt());

@@ -2,6 +2,8 @@
 //! error, Blinn 1977's forms, extremes, and SIMD-lane equivalence.
 mod common;
 
+use approx::assert_abs_diff_eq;
+
 use brdf::ndf::{
     self, AshikhminShirley, Beckmann, BlinnPhong, Ggx, GgxIsotropic, Ndf, ProjectedAlpha,
     SmithLambda,
@@ -193,8 +195,8 @@ fn peaks_and_textbook_forms() {
         let peak = 1.0 / (PI * a * a);
         let g = Ggx::<f64>::new(a).unwrap();
         let b = Beckmann::<f64>::new(a).unwrap();
-        assert!((g.d(n) / peak - 1.0).abs() < 1e-14);
-        assert!((b.d(n) / peak - 1.0).abs() < 1e-14);
+        assert_abs_diff_eq!(g.d(n) / peak, 1.0, epsilon = 1e-14);
+        assert_abs_diff_eq!(b.d(n) / peak, 1.0, epsilon = 1e-14);
         // Textbook tan/cos forms away from the extremes.
         for &t in &[0.1, 0.5, 1.0, 1.4] {
             let th: f64 = t * a.sqrt().max(0.05);
@@ -211,7 +213,11 @@ fn peaks_and_textbook_forms() {
     }
     let bp = BlinnPhong::<f64>::new(37.0).unwrap();
     let m = Vec3::new(0.6, 0.0, 0.8);
-    assert!((bp.d(m) - 39.0 / (2.0 * PI) * 0.8f64.powf(37.0)).abs() < 1e-15);
+    assert_abs_diff_eq!(
+        bp.d(m),
+        39.0 / (2.0 * PI) * 0.8f64.powf(37.0),
+        epsilon = 1e-15
+    );
 }
 
 #[test]
@@ -222,22 +228,22 @@ fn ggx_lambda_matches_the_textbook_form_and_anisotropy_uses_the_projected_alpha(
         let (sp, cp) = f64::sin_cos(ph);
         let w = Vec3::new(s * cp, s * sp, c);
         let a2 = cp * cp * 0.04 + sp * sp * 0.36;
-        assert!((g.projected_alpha(w) - a2.sqrt()).abs() < 1e-14);
+        assert_abs_diff_eq!(g.projected_alpha(w), a2.sqrt(), epsilon = 1e-14);
         let lam = ((1.0 + a2 * (s / c).powi(2)).sqrt() - 1.0) / 2.0;
         assert!(
             (g.lambda(w) / lam - 1.0).abs() < 1e-10,
             "θ={th}: {} vs {lam}",
             g.lambda(w)
         );
-        assert!((g.cos_lambda(w) / (c * lam) - 1.0).abs() < 1e-10);
-        assert!((g.g1(w) - 1.0 / (1.0 + lam)).abs() < 1e-14);
+        assert_abs_diff_eq!(g.cos_lambda(w) / (c * lam), 1.0, epsilon = 1e-10);
+        assert_abs_diff_eq!(g.g1(w), 1.0 / (1.0 + lam), epsilon = 1e-14);
         // Isotropic GGX at the projected alpha gives the same Λ.
         let iso = Ggx::<f64>::new(a2.sqrt()).unwrap();
-        assert!((iso.lambda(w) / lam - 1.0).abs() < 1e-10);
+        assert_abs_diff_eq!(iso.lambda(w) / lam, 1.0, epsilon = 1e-10);
     }
     // Grazing: cosΛ → α sin θ / 2 = α/2, finite; Λ large but finite.
     let w = Vec3::new(1.0, 0.0, 0.0);
-    assert!((g.cos_lambda(w) - 0.1).abs() < 1e-15);
+    assert_abs_diff_eq!(g.cos_lambda(w), 0.1, epsilon = 1e-15);
     assert!(g.lambda(w).is_finite() && g.lambda(w) > 1e10);
     assert_eq!(g.lambda(Vec3::new(0.0, 0.0, 1.0)), 0.0);
 }
@@ -317,12 +323,16 @@ fn shininess_and_beckmann_alpha_conversion_error() {
     let mut prev = 0.0;
     for &a in &[1e-3, 0.01, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0] {
         let s = ndf::beckmann_alpha_to_shininess(a);
-        assert!((ndf::shininess_to_beckmann_alpha(s) - a).abs() < 1e-14 * a.max(1e-2));
+        assert_abs_diff_eq!(
+            ndf::shininess_to_beckmann_alpha(s),
+            a,
+            epsilon = 1e-14 * a.max(1e-2)
+        );
         let bp = BlinnPhong::<f64>::new(s).unwrap();
         let b = Beckmann::<f64>::new(a).unwrap();
         // Same peak by construction.
         let n = Vec3::new(0.0, 0.0, 1.0);
-        assert!((bp.d(n) / b.d(n) - 1.0).abs() < 1e-12);
+        assert_abs_diff_eq!(bp.d(n) / b.d(n), 1.0, epsilon = 1e-12);
         let d = l1(|m| bp.d(m), |m| b.d(m), a);
         println!("  α = {a:<6} s = {s:<12.1} L1 = {d:.4}");
         // The documented table (ndf::beckmann_alpha_to_shininess), to 2 %.
@@ -386,7 +396,7 @@ fn roughness_alpha_round_trip() {
         let r = i as f64 / 100.0;
         let a = ndf::roughness_to_alpha(r);
         assert_eq!(a, r * r);
-        assert!((ndf::alpha_to_roughness(a) - r).abs() < 1e-15);
+        assert_abs_diff_eq!(ndf::alpha_to_roughness(a), r, epsilon = 1e-15);
     }
     let g = Ggx::<f32>::from_roughness(0.5).unwrap();
     assert_eq!(g.alpha_x(), 0.25);
@@ -402,9 +412,9 @@ fn blinn_1977_distributions() {
     for &beta in &[0.05, 0.2, 0.5, 1.0] {
         let (c1, c2, c3) = ndf::blinn1977_constants_from_half_angle(beta);
         let cb = f64::cos(beta);
-        assert!((ndf::blinn1977_d1(cb, c1) - 0.5).abs() < 1e-14);
-        assert!((ndf::blinn1977_d2(beta, c2) - 0.5).abs() < 1e-14);
-        assert!((ndf::blinn1977_d3(cb, c3) - 0.5).abs() < 1e-14);
+        assert_abs_diff_eq!(ndf::blinn1977_d1(cb, c1), 0.5, epsilon = 1e-14);
+        assert_abs_diff_eq!(ndf::blinn1977_d2(beta, c2), 0.5, epsilon = 1e-14);
+        assert_abs_diff_eq!(ndf::blinn1977_d3(cb, c3), 0.5, epsilon = 1e-14);
         for d in [
             ndf::blinn1977_d1(1.0, c1),
             ndf::blinn1977_d2(0.0, c2),
@@ -428,7 +438,11 @@ fn blinn_1977_distributions() {
     }
     let bp = BlinnPhong::<f64>::new(20.0).unwrap();
     let m = Vec3::new(0.6, 0.0, 0.8);
-    assert!((bp.d(m) - 22.0 / (2.0 * PI) * ndf::blinn1977_d1(0.8, 20.0)).abs() < 1e-15);
+    assert_abs_diff_eq!(
+        bp.d(m),
+        22.0 / (2.0 * PI) * ndf::blinn1977_d1(0.8, 20.0),
+        epsilon = 1e-15
+    );
     // D2 (Gaussian in the angle) ≈ π α² D_Beckmann (Gaussian in tan θ) near the peak only.
     let a = 0.05;
     let b = Beckmann::<f64>::new(a).unwrap();
@@ -575,7 +589,7 @@ fn tiny_alpha_peak_and_shoulder_are_finite_in_f32() {
             }
         }
         let peak = g.d(Vec3::new(0.0, 0.0, 1.0));
-        assert!((peak as f64 * PI * (a as f64).powi(2) - 1.0).abs() < 1e-6);
+        assert_abs_diff_eq!(peak as f64 * PI * (a as f64).powi(2), 1.0, epsilon = 1e-6);
     }
 }
 
@@ -746,7 +760,7 @@ fn default_cos_lambda_keeps_the_grazing_limit() {
                 "c={c}: {wrapped} vs {full}"
             );
         }
-        assert!((OnlyLambda(g).g1(w) - g.g1(w)).abs() < 1e-15);
+        assert_abs_diff_eq!(OnlyLambda(g).g1(w), g.g1(w), epsilon = 1e-15);
     }
 }
 

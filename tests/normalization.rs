@@ -3,6 +3,8 @@
 //! per-level precomputation, and SIMD-lane equivalence.
 mod common;
 
+use approx::assert_abs_diff_eq;
+
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use brdf::Error;
@@ -840,7 +842,7 @@ fn tri_ace_2010_fit_against_the_exact_factor() {
     assert!((r(0.0) + 0.4616).abs() < 1e-4, "{}", r(0.0));
     assert!((r(4.0) + 0.1033).abs() < 1e-4, "{}", r(4.0));
     assert!((r(256.0) + 5.308e-4).abs() < 1e-6, "{}", r(256.0));
-    assert!((r(1e9) - (0.0397436 * 8.0 * PI - 1.0)).abs() < 1e-8);
+    assert_abs_diff_eq!(r(1e9), (0.0397436 * 8.0 * PI - 1.0), epsilon = 1e-8);
     let peak = (1..4000)
         .map(|i| i as f64 * 0.01)
         .map(|s| (r(s), s))
@@ -856,5 +858,9 @@ fn tri_ace_2010_fit_against_the_exact_factor() {
         assert!(albedo < 1.0 && albedo > 0.26, "s = {s}: {albedo}");
         s = s * 1.1 + 0.01;
     }
-    assert!((tri_ace_2010_fit(16.0f64) / blinn_phong_cosine_exact(16.0) - 0.8062).abs() < 1e-4);
+    assert_abs_diff_eq!(
+        tri_ace_2010_fit(16.0f64) / blinn_phong_cosine_exact(16.0),
+        0.8062,
+        epsilon = 1e-4
+    );
 }
