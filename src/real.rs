@@ -17,11 +17,15 @@
 //!   lanes alike. The scalar never calls a software `fma`, which would be ~20× slower. The
 //!   exception is [`F32Fma`], an `f32` whose `mul_add` always fuses, for code compiled with
 //!   FMA at run time (the [`crate::batch`] kernels).
-//!
-//! [`Splat`] moves a material built on a scalar to any of these types.
 //! * Transcendentals (`exp`, `exp2`, `ln`, `log2`, `pow`, `sin`, `cos`) come from `std`/`libm`
 //!   on scalars (≤ 1 ULP) and from `wide`'s polynomial kernels on lanes. They differ by a few
-//!   ULP; `tests/simd_lanes.rs` states and checks the bound for every public formula.
+//!   ULP. The lane-against-scalar tests state and check the bound per formula: the
+//!   `lanes_*` / `simd_lanes_match_scalar` tests of `tests/core.rs`, `tests/fresnel.rs`,
+//!   `tests/ndf.rs`, `tests/masking.rs`, `tests/normalization.rs`, `tests/fast.rs` and
+//!   `tests/models.rs` (0–2 ULP for formulas of `+ − × ÷ √` and `mul_add` only; larger,
+//!   stated bounds where a `pow` with a large exponent amplifies the kernels' difference).
+//!
+//! [`Splat`] moves a material built on a scalar to any of these types.
 //!
 //! [`wide`]: https://docs.rs/wide
 
