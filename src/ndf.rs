@@ -203,8 +203,8 @@ fn check_lanes<R: Real>(
     Ok(())
 }
 
-const ALPHA_DOMAIN: &str = "[0.0001, 1]";
-const SHININESS_DOMAIN: &str = "[0, 199999998]";
+const ALPHA_DOMAIN: &str = "[1e-4, 1]";
+const SHININESS_DOMAIN: &str = "[0, 2e8 − 2]";
 
 // ---------------------------------------------------------------------------------------------
 // GGX / Trowbridge-Reitz

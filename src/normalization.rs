@@ -584,13 +584,21 @@ impl<S: Scalar> BlinnPhongLobe<S> {
     }
 }
 
-/// Validates a shininess range `0 ≤ s_min ≤ s_max < ∞` (strictly below when `strict`).
-fn check_range(s_min: f64, s_max: f64, strict: bool) -> Result<(), Error> {
-    error::non_negative("s_min", s_min)?;
+/// Validates a shininess range `0 ≤ s_min ≤ s_max < ∞` (strictly below when `strict`);
+/// with `f32`, both must fit in `f32` (the tables hold `f32`).
+fn check_range(s_min: f64, s_max: f64, strict: bool, f32: bool) -> Result<(), Error> {
+    let check = |param, v: f64, domain, ok: &dyn Fn(f64) -> bool| {
+        if f32 {
+            error::check(param, v, domain, ok)
+        } else {
+            error::check_f64(param, v, domain, ok)
+        }
+    };
+    check("s_min", s_min, "[0, ∞)", &|v| v >= 0.0)?;
     if strict {
-        error::check("s_max", s_max, "(s_min, ∞)", |v| v > s_min)?;
+        check("s_max", s_max, "(s_min, ∞)", &|v| v > s_min)?;
     } else {
-        error::check("s_max", s_max, "[s_min, ∞)", |v| v >= s_min)?;
+        check("s_max", s_max, "[s_min, ∞)", &|v| v >= s_min)?;
     }
     Ok(())
 }
@@ -624,7 +632,7 @@ pub fn fill_table(
     s_max: f64,
     out: &mut [f32],
 ) -> Result<(), Error> {
-    check_range(s_min, s_max, false)?;
+    check_range(s_min, s_max, false, true)?;
     let normalization = normalization.validate()?;
     let last = out.len().saturating_sub(1).max(1) as f64;
     for (i, v) in out.iter_mut().enumerate() {
@@ -688,11 +696,11 @@ impl<const N: usize> NormalizationTable<N> {
     /// [`Normalization::TriAceFit`] offset.
     pub fn new(normalization: Normalization, s_min: f64, s_max: f64) -> Result<Self, Error> {
         const { assert!(N >= 2, "a NormalizationTable needs at least two entries") };
-        check_range(s_min, s_max, true)?;
+        check_range(s_min, s_max, true, true)?;
         // The table lives in f32: tabulate at the f32-rounded range so that entries, their
         // shininess and the lookup agree exactly.
         let (s_min, s_max) = (s_min as f32, s_max as f32);
-        check_range(s_min.into(), s_max.into(), true)?;
+        check_range(s_min.into(), s_max.into(), true, true)?;
         let mut values = [0.0f32; N];
         fill_table(normalization, s_min.into(), s_max.into(), &mut values)?;
         Ok(Self {
@@ -885,8 +893,8 @@ fn error_extremes(offset: f64, a: f64, b: f64) -> (f64, f64, f64, f64) {
 /// # Ok::<(), brdf::Error>(())
 /// ```
 pub fn fit_error(offset: f64, s_min: f64, s_max: f64) -> Result<FitError, Error> {
-    error::check("offset", offset, "(−∞, ∞)", |_| true)?;
-    check_range(s_min, s_max, false)?;
+    error::check_f64("offset", offset, "(−∞, ∞)", |_| true)?;
+    check_range(s_min, s_max, false, false)?;
     Ok(fit_error_unchecked(offset, s_min, s_max))
 }
 
@@ -941,7 +949,7 @@ fn fit_error_unchecked(offset: f64, s_min: f64, s_max: f64) -> FitError {
 /// # Ok::<(), brdf::Error>(())
 /// ```
 pub fn best_fit_offset(s_min: f64, s_max: f64) -> Result<FitError, Error> {
-    check_range(s_min, s_max, false)?;
+    check_range(s_min, s_max, false, false)?;
     let (mut lo, mut hi) = (2.0f64, 4.0f64);
     for _ in 0..100 {
         let mid = 0.5 * (lo + hi);

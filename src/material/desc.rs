@@ -1087,6 +1087,15 @@ fn iso_alpha(isotropic: bool, e: Error) -> Error {
             value,
             domain,
         },
+        Error::DoesNotFit {
+            param,
+            value,
+            number_type,
+        } => Error::DoesNotFit {
+            param: rename(param),
+            value,
+            number_type,
+        },
     }
 }
 

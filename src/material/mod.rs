@@ -52,6 +52,8 @@
 //!   its domain [1e-4, 1]"``;
 //! * NaN or ±∞ (TOML can write `nan`, `inf`; `1e400` parses as ∞): ``"parameter `sigma`
 //!   must be finite"``;
+//! * a finite value that `f32` cannot hold (every material builds in `f32` too):
+//!   ``"`oren_nayar`: parameter `sigma` = 1e300 does not fit in f32"``;
 //! * a misspelt or extra field: ``"unknown field `alhpa`, expected one of …"``;
 //! * a missing field: ``"missing field `shininess`"``;
 //! * an unknown preset or model: ``"`fresnel`: unknown variant `unobtanium`, expected one
