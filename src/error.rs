@@ -146,12 +146,6 @@ pub(crate) fn check_f64<T: Into<f64> + Copy>(
     }
 }
 
-/// `value ∈ (0, ∞)`.
-#[inline]
-pub(crate) fn positive<T: Into<f64> + Copy>(param: &'static str, value: T) -> Result<T, Error> {
-    check(param, value, "(0, ∞)", |v| v > 0.0)
-}
-
 /// `value ∈ [lo, hi]`, the bounds compared in the precision of `S` (rounded to nearest), so
 /// that `1e-4_f32` (which is below `1e-4`) is accepted for a bound `1e-4`.
 #[inline]
@@ -185,6 +179,10 @@ pub(crate) fn unit_interval<T: Into<f64> + Copy>(
 mod tests {
     use super::*;
     use std::format;
+
+    fn positive<T: Into<f64> + Copy>(param: &'static str, value: T) -> Result<T, Error> {
+        check(param, value, "(0, ∞)", |v| v > 0.0)
+    }
 
     #[test]
     fn rejects_nan_infinite_and_out_of_domain() {

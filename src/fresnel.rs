@@ -13,7 +13,8 @@
 //! * `cos_theta_i = cos θi`, the cosine between the incident direction and the normal of the
 //!   interface (for a microfacet model, `cos θd = wi·wm`). `eta = η_t / η_i`, the relative
 //!   IOR of the far side over the near side; the dielectric functions flip it (`1/eta`)
-//!   when `cos_theta_i < 0` (light arriving from inside).
+//!   when `cos_theta_i < 0` (light arriving from inside). The [`FresnelTerm`]s of the BRDF
+//!   models do not: they take `|cos θd|` (see [`Dielectric`]).
 //! * A conductor's complex IOR is `eta + i·k` with `k ≥ 0` (time dependence `e^{−iωt}`, as
 //!   pbrt). The seed talk (Gotanda 2009) writes `n − iκ`, the conjugate: reflectances are the
 //!   same, phases of the complex amplitudes are conjugated.
@@ -31,6 +32,25 @@
 //!   is the same.
 //! * Everything is computed from `g = η cos θt = √(η² − 1 + cos²θi)` (Cook & Torrance 1982),
 //!   which is exact at `η = 1` and reaches total internal reflection (TIR) when `g² < 0`.
+//!
+//! # Parameter domains
+//!
+//! The constructors accept a relative IOR `eta ∈ [MIN_ETA, MAX_ETA] = [1e-4, 1e4]` and an
+//! extinction coefficient `k ∈ [0, MAX_K] = [0, 1e4]` (and reflectances from which an IOR is
+//! derived up to [`MAX_DIELECTRIC_F0`]), whatever number type they are built on. These are
+//! *physical* bounds, chosen wider than any optical constant: relative IORs of dielectric
+//! interfaces lie within about `[1/4, 4]`, the real parts of metals' IORs above `0.01`
+//! (silver, sodium) and their `k` below `~10³` from the ultraviolet to the far infrared
+//! (aluminium at 10 µm: `n ≈ 25`, `k ≈ 90`). Beyond them the formulas stop representing
+//! anything in `f32`, the narrowest type a term may be splatted to: `η²`, `k²` and
+//! `(η² + k²)²` overflow (`Dielectric::new(1e20)` and `conductor` at `k ≈ 1e12` gave NaN in
+//! `f32`), and near normal incidence `η² − 1` rounds away the `η²` that `g²` reduces to. Inside
+//! them every intermediate is finite and normal in `f32`, and `tests/domains.rs` evaluates
+//! every constructor over its whole domain on `f32`, `f64` and lanes, with the `f64`-built
+//! terms splatted to `f32` too — which is why an `f64` term has the same domain.
+//!
+//! The free functions ([`dielectric`], [`conductor`], …) do not validate; their documented
+//! domain is the same, and they stay finite somewhat beyond it.
 //!
 //! # Accuracy of the approximations for metals
 //!
@@ -182,10 +202,20 @@ impl<R: Real> Amplitudes<R> {
 ///
 /// (The seed's forms with `n₁ = 1, n₂ = η'`, multiplied through by `η'`; `g = η' cos θt`.)
 ///
-/// * Domain: `eta ∈ (0, ∞)` with `eta²` finite and normal in the lane precision; any
+/// Evaluated divided through by `η'` (see `DielectricConsts`), which avoids three losses of
+/// the direct form: `η'²` overflowing (`f32` gave NaN from `η = 1e20`); `cos θt` near normal
+/// incidence for small `η'`, where `η'² − 1 + c²` rounds away the `η'²` it reduces to (in
+/// `f32` at `η' = 1e-6`, `cos θt` came out 244); and at `η' = 1` exactly `cos θt = c` (where
+/// `√(c²)` loses `c` once `c²` underflows, below `c ≈ 1e-19` in `f32`, and
+/// `r_s = (c − 0)/(c + 0)` gave `r = 1`). Both numerators are no larger than their
+/// denominators, so `|r_s|, |r_p| ≤ 1` holds exactly after rounding.
+///
+/// * Domain: `eta ∈ [MIN_ETA, MAX_ETA]` (tested on every lane type); finite for every `eta`
+///   from `≈ 1e-19` (`f32`; `1/eta²` must be finite) to the largest finite value. Any
 ///   `cos_theta_i` (values a rounding step outside `[−1, 1]` are clamped).
 /// * Normal incidence: `r_s = r_p = (1 − η)/(1 + η)`. Grazing (`c = 0`, `η ≠ 1`):
-///   `r_s = −1, r_p = 1`. Index-matched (`η = 1`): `r = 0, t = 1` everywhere, including `c = 0`.
+///   `r_s = −1, r_p = 1`. Index-matched (`η = 1`): `r_s = r_p = 0`, `r = 0, t = 1`
+///   everywhere, including `c = 0`. `cos θt ∈ [0, 1]` (clamped against rounding).
 /// * Under TIR: see [`Amplitudes`] (`r_s = 1`, `r_p = −1`, `t_s = t_p = 0`).
 ///
 /// Reference: Born & Wolf, *Principles of Optics*, §1.5.2; Cook & Torrance 1982 for the
@@ -202,45 +232,108 @@ impl<R: Real> Amplitudes<R> {
 #[inline]
 #[must_use]
 pub fn dielectric_amplitudes<R: Real>(cos_theta_i: R, eta: R) -> Amplitudes<R> {
+    // 1/η' from η' itself (not η), so that dielectric(−c, η) = dielectric(c, 1/η) exactly.
     let eta = R::select(cos_theta_i.lt(R::zero()), eta.recip(), eta);
-    oriented_amplitudes(cos_theta_i.abs(), eta)
+    let inv = eta.recip();
+    let c = cos_theta_i.abs().min(R::one());
+    oriented_amplitudes(c, c * c, DielectricConsts::of(eta, inv))
 }
 
-/// The body of [`dielectric_amplitudes`] once the side is resolved: `c = |cos θi|` and the
-/// relative IOR `eta` seen from the incident side. [`Dielectric`] calls it directly (its
-/// cosines are never negative), so its `eval` spends no division on `1/eta`.
-#[inline(always)]
-fn oriented_amplitudes<R: Real>(c: R, eta: R) -> Amplitudes<R> {
-    let c = c.min(R::one());
-    oriented_amplitudes_cos2(c, c * c, eta)
+/// The per-IOR constants of the dielectric formulas, for the relative IOR `eta` seen from
+/// the incident side. [`Dielectric`] stores them; the free functions compute them per call
+/// with the same body, so both give the same bits.
+///
+/// Every formula is divided through by `η` (numerators and denominators alike), so that it
+/// needs `cos θt = g/η` rather than `g` and no `η²`: finite for every `η` whose reciprocal
+/// squared is finite (`η ≳ 1e-19` in `f32`), `1e20` and `f32::MAX` included. `cos²θt` is
+/// `(c² − q)/η² + p`, in whichever of two forms rounds less for the IOR:
+/// * `η ≥ 1/√2`: `p = ((η − 1)/η)((η + 1)/η)`, `q = 0`, i.e. `(η² − 1 + c²)/η²`. `η − 1` is
+///   exact near `η = 1` (Sterbenz), so `p` keeps its relative accuracy where it is small
+///   (`(1 − 1/η)(1 + 1/η)` would not: `1/η` is rounded, an error of `ε/(η − 1)` relative —
+///   visible as `1e-11` in the reflectance at `η = 1 + 1e-8`, grazing). For `η ≥ 1` a sum of
+///   two terms `≥ 0`; for `η ∈ [1/√2, 1)` the rounding of `|p| ≤ 1` and of `c²/η² ≤ 2` stays
+///   a few `ε`.
+/// * `η < 1/√2`: `p = 1`, `q = 1`, i.e. `1 − s²/η²` with `s² = 1 − c²`. Light is only
+///   transmitted for `s < η`, i.e. `c² > 1/2`, where `c² − 1` is exact (Sterbenz), so near
+///   normal incidence `cos θt → 1` keeps its digits, which `(η² − 1 + c²)/η²` cancels away
+///   for small `η` (its rounding error `≈ ε/η²`: 244 instead of 1 in `f32` at `η = 1e-6`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct DielectricConsts<R> {
+    eta: R,
+    inv_eta: R,
+    inv_eta2: R,
+    p: R,
+    q: R,
 }
 
-/// The body of [`oriented_amplitudes`] given `c ∈ [0, 1]` and `c2 = c²` (up to rounding).
+impl<R: Real> DielectricConsts<R> {
+    /// The constants of `eta`, given `inv_eta = 1/eta`.
+    #[inline(always)]
+    fn of(eta: R, inv_eta: R) -> Self {
+        let below = eta.lt(R::from_f64(core::f64::consts::FRAC_1_SQRT_2));
+        let p = ((eta - R::one()) * inv_eta) * ((eta + R::one()) * inv_eta);
+        Self {
+            eta,
+            inv_eta,
+            inv_eta2: inv_eta * inv_eta,
+            p: R::select(below, R::one(), p),
+            q: R::select(below, R::one(), R::zero()),
+        }
+    }
+
+    /// `cos θt = g/η` (`0` under TIR) and the TIR mask, for `c ∈ [0, 1]`, `c2 = c²`.
+    #[inline(always)]
+    fn cos_t(&self, c: R, c2: R) -> (R, R::Mask) {
+        let t2 = (c2 - self.q).mul_add(self.inv_eta2, self.p);
+        // η = 1: cos θt = c exactly (√(c²) loses c where c² underflows).
+        let matched = self.eta.eq(R::one());
+        (R::select(matched, c, t2.safe_sqrt()), t2.lt(R::zero()))
+    }
+}
+
+/// The body of [`dielectric_amplitudes`] once the side is resolved: `c = |cos θi| ∈ [0, 1]`,
+/// `c2 = c²` (up to rounding) and the constants of the relative IOR seen from the incident
+/// side. [`Dielectric`] calls it directly (its cosines are never negative), so its `eval`
+/// spends no division on `1/eta`.
+///
+/// With `t = cos θt = g/η`, `c/η` and `ηc`, the amplitudes of [`dielectric_amplitudes`]
+/// divided through by `η`:
+///
+/// ```text
+/// r_s = (c/η − t)/(c/η + t)     r_p = (t − ηc)/(t + ηc)
+/// t_s = 2(c/η)/(c/η + t)        t_p = 2c/(t + ηc)
+/// ```
 #[inline(always)]
-fn oriented_amplitudes_cos2<R: Real>(c: R, c2: R, eta: R) -> Amplitudes<R> {
-    let g2 = (eta - R::one()).mul_add(eta + R::one(), c2);
-    let tir = g2.lt(R::zero());
-    let g = g2.safe_sqrt();
-    let eta2 = eta * eta;
-    let den_s = c + g;
-    let den_p = eta2.mul_add(c, g);
-    // den_s = 0 only for c = 0 and g = 0: η = 1 at grazing (index-matched) or the critical
-    // angle at grazing; the TIR select below handles the latter.
+fn oriented_amplitudes<R: Real>(c: R, c2: R, k: DielectricConsts<R>) -> Amplitudes<R> {
+    let (t, tir) = k.cos_t(c, c2);
+    let c_eta = c * k.inv_eta;
+    let eta_c = k.eta * c;
+    let den_s = c_eta + t;
+    let den_p = t + eta_c;
+    // The denominators vanish together, only for c = 0 and t = 0: η = 1 at grazing
+    // (index-matched) or the critical angle at grazing; the TIR select below handles the
+    // latter.
     let ok = den_s.gt(R::zero());
-    let two_c = c + c;
-    let r_s = R::select(ok, (c - g) / den_s, R::zero());
-    let r_p = R::select(ok, eta2.mul_add(-c, g) / den_p, R::zero());
-    let t_s = R::select(ok, two_c / den_s, R::one());
-    let t_p = R::select(ok, eta * two_c / den_p, R::one());
+    let r_s = R::select(ok, (c_eta - t) / den_s, R::zero());
+    let r_p = R::select(ok, (t - eta_c) / den_p, R::zero());
+    let t_s = R::select(ok, (c_eta + c_eta) / den_s, R::one());
+    let t_p = R::select(ok, (c + c) / den_p, R::one());
     Amplitudes {
         r_s: R::select(tir, R::one(), r_s),
         r_p: R::select(tir, -R::one(), r_p),
         t_s: R::select(tir, R::zero(), t_s),
         t_p: R::select(tir, R::zero(), t_p),
         cos_theta_i: c,
-        cos_theta_t: g / eta,
-        eta,
+        cos_theta_t: t.min(R::one()),
+        eta: k.eta,
     }
+}
+
+/// `oriented_amplitudes(..).reflectance()`: what [`Dielectric`] evaluates (the transmission
+/// coefficients are not computed once inlined).
+#[inline(always)]
+fn dielectric_reflectance<R: Real>(c: R, c2: R, k: DielectricConsts<R>) -> R {
+    oriented_amplitudes(c, c2, k).reflectance()
 }
 
 /// Unpolarized Fresnel reflectance of a smooth dielectric interface.
@@ -250,8 +343,9 @@ fn oriented_amplitudes_cos2<R: Real>(c: R, c2: R, eta: R) -> Amplitudes<R> {
 ///   = 1 under total internal reflection (g² = η'² − 1 + cos²θi < 0)
 /// ```
 ///
-/// * Domain: `eta ∈ (0, ∞)` (relative IOR `η_t/η_i`), any `cos_theta_i`; negative cosines
-///   mean incidence from inside and use `1/eta`. Result in `[0, 1]`.
+/// * Domain: `eta ∈ [MIN_ETA, MAX_ETA]` (relative IOR `η_t/η_i`; finite beyond, see
+///   [`dielectric_amplitudes`]), any `cos_theta_i`; negative cosines mean incidence from
+///   inside and use `1/eta`. Result in `[0, 1]`.
 /// * `r(1, η) = ((η − 1)/(η + 1))²`, `r(0, η ≠ 1) = 1`, `r(·, 1) = 0`.
 ///
 /// Reference: Born & Wolf, *Principles of Optics*, §1.5.2; pbrt-v4 §9.3.1 (`FrDielectric`).
@@ -307,12 +401,20 @@ pub fn dielectric_transmittance<R: Real>(cos_theta_i: R, eta: R) -> R {
 /// subtractive cancellation: the larger is `(a²+b² + |t₀|)/2` and the smaller `η²k²` over it
 /// (`a²b² = η²k²`), and `R_s + R_p` share one division.
 ///
-/// * Domain: `eta ∈ (0, ∞)`, `k ∈ [0, ∞)` with `(η² + k²)²` finite in the lane precision
-///   (tested for η ∈ [1e-3, 1e3], k ≤ 100 on f32 and f64); `cos_theta_i` taken by magnitude
-///   and clamped to `[0, 1]` (a conductor is opaque: its sign does **not** flip `eta`).
-/// * Result in `[0, 1]`; equals [`dielectric`]`(|cos θi|, eta)` when `k = 0`, including TIR
-///   for `eta < 1` (then `a = 0` and `R = 1`). `k` and `−k` give the same reflectance, so
-///   the seed's `n − iκ` values can be used as they are, with `k = κ`.
+/// Two losses of the direct form are avoided: `t₀` is `(η² − k² − 1) + c²` or
+/// `(η² − k²) − s²`, whichever has the smaller constant (see `ConductorConsts`), so a small
+/// `t₀` near normal incidence keeps its digits; and at `η̃ = 1` exactly (`η = 1`, `k = 0`)
+/// `a = c`, so `R = 0` at every angle (`√(c²)` loses `c` once `c²` underflows: in `f32`
+/// `R` was 0.029 at `c = 1e-20`).
+///
+/// * Domain: `eta ∈ [MIN_ETA, MAX_ETA]`, `k ∈ [0, MAX_K]` (tested on every lane type; finite
+///   beyond as long as `(η² + k²)²` is finite in the lane precision); `cos_theta_i` taken by
+///   magnitude and clamped to `[0, 1]` (a conductor is opaque: its sign does **not** flip
+///   `eta`).
+/// * Result in `[0, 1]` (exactly: `num_s ≤ den_s` and `num_p ≤ den_p` survive rounding);
+///   equals [`dielectric`]`(|cos θi|, eta)` when `k = 0`, including TIR for `eta < 1` (then
+///   `a = 0` and `R = 1`) and the index-matched `eta = 1` (`R = 0`). `k` and `−k` give the
+///   same reflectance, so the seed's `n − iκ` values can be used as they are, with `k = κ`.
 ///
 /// Reference: Born & Wolf §14.2 (metals); pbrt-v4 §9.3.6 (`FrComplex`).
 ///
@@ -330,49 +432,91 @@ pub fn dielectric_transmittance<R: Real>(cos_theta_i: R, eta: R) -> R {
 #[inline]
 #[must_use]
 pub fn conductor<R: Real>(cos_theta_i: R, eta: R, k: R) -> R {
-    let (e, nk2) = conductor_constants(eta, k);
     let c = cos_theta_i.abs().min(R::one());
-    conductor_from_constants(c, c * c, e, nk2)
+    ConductorConsts::of(eta, k).reflectance(c, c * c)
 }
 
-/// The per-material constants of [`conductor`]: `e = (η − 1)(η + 1) − k²` (exact 0 for
-/// `η = 1, k = 0`) and `η²k²`. [`Conductor`] stores them so that `eval` does not recompute them.
-#[inline(always)]
-fn conductor_constants<R: Real>(eta: R, k: R) -> (R, R) {
-    let e = (eta - R::one()).mul_add(eta + R::one(), -(k * k));
-    let nk = eta * k;
-    (e, nk * nk)
-}
-
-/// The body of [`conductor`] on precomputed constants (see [`conductor_constants`]), for
-/// `c = |cos θi| ∈ [0, 1]` and `c2 = c²` (up to rounding).
+/// The per-channel constants of [`conductor`], which [`Conductor`] stores so that `eval`
+/// does not recompute them (the free function computes them per call with the same body,
+/// so both give the same bits).
 ///
-/// Steps, with `t₀ = e + c² = η² − k² − s²`:
-/// * `a² + b² = h = √(t₀² + 4η²k²)`; the larger of `a²`, `b²` is `(h + |t₀|)/2` (no
-///   cancellation) and the smaller follows from `a²b² = η²k²` — one division;
-/// * `R = (R_s + R_p)/2 = num_s (den_p + num_p) / (2 den_s den_p)` — one division for both
-///   polarizations (every term is a sum of squares: no cancellation).
-#[inline(always)]
-fn conductor_from_constants<R: Real>(c: R, c2: R, e: R, nk2: R) -> R {
-    let s2 = R::one() - c2;
-    let t0 = e + c2;
-    let h = t0.mul_add(t0, R::from_f64(4.0) * nk2).sqrt();
-    let big = (h + t0.abs()) * R::from_f64(0.5);
-    let small = nk2 / big.max(R::from_f64(1e-30));
-    let t0_pos = t0.ge(R::zero());
-    let a2 = R::select(t0_pos, big, small);
-    let b2 = R::select(t0_pos, small, big);
-    let a = a2.sqrt();
-    let (am, ap) = (a - c, a + c);
-    let num_s = am.mul_add(am, b2);
-    let den_s = ap.mul_add(ap, b2);
-    let cb2 = c2 * b2;
-    let (pm, pp) = (c.mul_add(a, -s2), c.mul_add(a, s2));
-    let num_p = pm.mul_add(pm, cb2);
-    let den_p = pp.mul_add(pp, cb2);
-    let den = R::from_f64(2.0) * den_s * den_p;
-    // den = 0 only for an index-matched interface at grazing incidence (η = 1, k = 0, c = 0).
-    R::select(den.gt(R::zero()), num_s * (den_p + num_p) / den, R::zero())
+/// `t₀ = η² − k² − s²` is evaluated as `(c² − q) + p` with
+/// * `p = (η − 1)(η + 1) − k²`, `q = 0` when `η² − k² ≥ 1/2`: `t₀ = p + c²`, exact `0` for
+///   `η = 1, k = 0`;
+/// * `p = η² − k²`, `q = 1` otherwise: `t₀ = p − s²`, where `|η² − k²| < |η² − k² − 1|`, so
+///   the rounding of the constant (`ε|p|`) is the smaller of the two. Where `t₀` is small in
+///   this case, `s² < 1/2` and `c² − 1 = −s²` is exact (Sterbenz).
+///
+/// The first form alone loses `t₀ → η²` near normal incidence for small `η` (a rounding of
+/// `≈ ε` against `η²`); the second alone loses `t₀ = c²` at grazing for `η = 1`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct ConductorConsts<R> {
+    p: R,
+    q: R,
+    /// `η²k²`.
+    nk2: R,
+}
+
+impl<R: Real> ConductorConsts<R> {
+    #[inline(always)]
+    fn of(eta: R, k: R) -> Self {
+        let k2 = k * k;
+        let e1 = (eta - R::one()).mul_add(eta + R::one(), -k2);
+        let e2 = eta.mul_add(eta, -k2);
+        let second = e2.lt(R::from_f64(0.5));
+        let nk = eta * k;
+        Self {
+            p: R::select(second, e2, e1),
+            q: R::select(second, R::one(), R::zero()),
+            nk2: nk * nk,
+        }
+    }
+
+    /// `t₀ = η² − k² − s²` for `c2 = c²`.
+    #[inline(always)]
+    fn t0(&self, c2: R) -> R {
+        (c2 - self.q) + self.p
+    }
+
+    /// `η̃ = 1` exactly (`η = 1`, `k = 0`).
+    #[inline(always)]
+    fn matched(&self) -> R::Mask {
+        self.p.eq(R::zero()) & self.q.eq(R::zero()) & self.nk2.eq(R::zero())
+    }
+
+    /// The body of [`conductor`] for `c = |cos θi| ∈ [0, 1]` and `c2 = c²` (up to
+    /// rounding).
+    ///
+    /// Steps:
+    /// * `a² + b² = h = √(t₀² + 4η²k²)`; the larger of `a²`, `b²` is `(h + |t₀|)/2` (no
+    ///   cancellation) and the smaller follows from `a²b² = η²k²` — one division;
+    /// * `R = (R_s + R_p)/2 = num_s (den_p + num_p) / (2 den_s den_p)` — one division for
+    ///   both polarizations (every term is a sum of squares: no cancellation).
+    #[inline(always)]
+    fn reflectance(&self, c: R, c2: R) -> R {
+        let nk2 = self.nk2;
+        let s2 = R::one() - c2;
+        let t0 = self.t0(c2);
+        let h = t0.mul_add(t0, R::from_f64(4.0) * nk2).sqrt();
+        let big = (h + t0.abs()) * R::from_f64(0.5);
+        let small = nk2 / big.max(R::from_f64(1e-30));
+        let t0_pos = t0.ge(R::zero());
+        let a2 = R::select(t0_pos, big, small);
+        let b2 = R::select(t0_pos, small, big);
+        // η̃ = 1: a = c exactly (then b = 0 and num_s = 0).
+        let a = R::select(self.matched(), c, a2.sqrt());
+        let (am, ap) = (a - c, a + c);
+        let num_s = am.mul_add(am, b2);
+        let den_s = ap.mul_add(ap, b2);
+        let cb2 = c2 * b2;
+        let (pm, pp) = (c.mul_add(a, -s2), c.mul_add(a, s2));
+        let num_p = pm.mul_add(pm, cb2);
+        let den_p = pp.mul_add(pp, cb2);
+        let den = R::from_f64(2.0) * den_s * den_p;
+        // den = 0 only for an index-matched interface at grazing incidence (η = 1, k = 0,
+        // c = 0).
+        R::select(den.gt(R::zero()), num_s * (den_p + num_p) / den, R::zero())
+    }
 }
 
 /// Complex s and p amplitude reflection coefficients of a conductor (or, with `k = 0`, of a
@@ -393,9 +537,10 @@ fn conductor_from_constants<R: Real>(c: R, c2: R, e: R, nk2: R) -> R {
 /// `|r_s| = |r_p| = 1` and `arg r_s = −2 atan(√(sin²θi − η²) / cos θi)` (the Goos–Hänchen /
 /// Fresnel-rhomb phase).
 ///
-/// * Domain: `eta.re ∈ (0, ∞)`, `eta.im ∈ [0, ∞)`, `cos_theta_i` by magnitude, clamped to 1.
-///   Index-matched grazing incidence (`η̃ = 1`, `cos θi = 0`) returns `0` (the limit along
-///   `η̃ = 1`).
+/// * Domain: `eta.re ∈ [MIN_ETA, MAX_ETA]`, `eta.im ∈ [0, MAX_K]` (the constructors'
+///   domains), `cos_theta_i` by magnitude, clamped to 1. Index-matched (`η̃ = 1`): `0` at
+///   every angle, grazing included (the limit along `η̃ = 1`). `η̃² − s²` is formed as in
+///   [`conductor`].
 /// * Generic over [`Real`] (the complex values are plain `re`/`im` pairs of lanes), though
 ///   mostly useful on `f32`/`f64`.
 ///
@@ -415,10 +560,17 @@ fn conductor_from_constants<R: Real>(c: R, c2: R, e: R, nk2: R) -> R {
 pub fn conductor_amplitudes<R: Real>(cos_theta_i: R, eta: Complex<R>) -> (Complex<R>, Complex<R>) {
     let c = cos_theta_i.abs().min(R::one());
     let (n, k) = (eta.re, eta.im);
-    // η̃² = (n² − k²) + i 2nk;  η̃² − s² = (n − 1)(n + 1) + c² − k² + i 2nk.
+    // η̃² = (n² − k²) + i 2nk;  η̃² − s² = t₀ + i 2nk, t₀ as in `conductor`.
     let e2 = (n * n - k * k, (n + n) * k);
-    let z = ((n - R::one()).mul_add(n + R::one(), c * c) - k * k, e2.1);
+    let consts = ConductorConsts::of(n, k);
+    let z = (consts.t0(c * c), e2.1);
+    // η̃ = 1: w = c exactly, so r_s = r_p = 0 at every angle.
     let w = csqrt(z);
+    let matched = consts.matched();
+    let w = (
+        R::select(matched, c, w.0),
+        R::select(matched, R::zero(), w.1),
+    );
     let ec = (e2.0 * c, e2.1 * c);
     let r_s = cdiv((c - w.0, -w.1), (c + w.0, w.1));
     let r_p = cdiv((w.0 - ec.0, w.1 - ec.1), (w.0 + ec.0, w.1 + ec.1));
@@ -466,9 +618,9 @@ fn cdiv<R: Real>((a, b): (R, R), (c, d): (R, R)) -> (R, R) {
 /// factor is `1 + r_p²/r_s²` (tests check the equality over the whole domain). Without the
 /// `½` the value at normal incidence would be `2 F0`.
 ///
-/// * Domain: `eta ∈ (0, ∞)`, `cos_theta` by magnitude, clamped to 1 (no `1/η` flip: pass the
-///   relative IOR seen from the incident side). Result in `[0, 1]`; index-matched grazing
-///   incidence (`η = 1, c = 0`) gives `0`.
+/// * Domain: `eta ∈ [MIN_ETA, MAX_ETA]`, `cos_theta` by magnitude, clamped to 1 (no `1/η`
+///   flip: pass the relative IOR seen from the incident side). Result in `[0, 1]`;
+///   index-matched (`η = 1`) gives `0` at every angle. `g` is formed as in [`dielectric`].
 ///
 /// Reference: R. L. Cook, K. E. Torrance, "A Reflectance Model for Computer Graphics",
 /// ACM Trans. Graph. 1(1), 1982, eq. in §3 (after Sparrow & Cess); J. F. Blinn, "Models of Light
@@ -485,9 +637,9 @@ fn cdiv<R: Real>((a, b): (R, R), (c, d): (R, R)) -> (R, R) {
 #[must_use]
 pub fn cook_torrance_gc<R: Real>(cos_theta: R, eta: R) -> R {
     let c = cos_theta.abs().min(R::one());
-    let g2 = (eta - R::one()).mul_add(eta + R::one(), c * c);
-    let tir = g2.lt(R::zero());
-    let g = g2.safe_sqrt();
+    // g = η cos θt, cos θt formed as in `dielectric` (g = c at η = 1).
+    let (t, tir) = DielectricConsts::of(eta, eta.recip()).cos_t(c, c * c);
+    let g = eta * t;
     let gpc = g + c;
     let gmc = g - c;
     let a = R::select(gpc.gt(R::zero()), gmc / gpc, R::zero());
@@ -788,6 +940,41 @@ fn gulbrandsen_n_range<R: Real>(r: R) -> (R, R) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Parameter domains
+// ---------------------------------------------------------------------------------------
+
+/// The smallest relative IOR (`eta`, real part) the constructors accept: `1e-4`.
+///
+/// See the [module docs](self#parameter-domains) for why the IOR domain is
+/// `[MIN_ETA, MAX_ETA]` and `k ∈ [0, MAX_K]`.
+pub const MIN_ETA: f64 = 1e-4;
+/// The largest relative IOR (`eta`, real part) the constructors accept: `1e4`.
+pub const MAX_ETA: f64 = 1e4;
+/// The largest extinction coefficient `k` the constructors accept: `1e4`.
+pub const MAX_K: f64 = 1e4;
+/// The largest normal-incidence reflectance that [`Dielectric::from_f0`] and
+/// [`Conductor::from_reflectivity_edge_tint`] accept: `0.9996`, just below
+/// `F0(MAX_ETA) = ((1e4 − 1)/(1e4 + 1))² ≈ 0.99960008`, so the IOR they derive is at most
+/// [`MAX_ETA`].
+pub const MAX_DIELECTRIC_F0: f64 = 0.9996;
+
+const ETA_DOMAIN: &str = "[1e-4, 1e4]";
+const K_DOMAIN: &str = "[0, 1e4]";
+const F0_IOR_DOMAIN: &str = "[0, 0.9996]";
+
+/// `eta ∈ [MIN_ETA, MAX_ETA]`, compared in the precision of `S`.
+#[inline]
+pub(crate) fn check_eta<S: Scalar>(eta: S) -> Result<S, Error> {
+    error::in_range("eta", eta, MIN_ETA, MAX_ETA, ETA_DOMAIN)
+}
+
+/// `k ∈ [0, MAX_K]`, compared in the precision of `S`.
+#[inline]
+pub(crate) fn check_k<S: Scalar>(k: S) -> Result<S, Error> {
+    error::in_range("k", k, 0.0, MAX_K, K_DOMAIN)
+}
+
+// ---------------------------------------------------------------------------------------
 // FresnelTerm implementations
 // ---------------------------------------------------------------------------------------
 
@@ -823,24 +1010,26 @@ impl<S: Scalar, const N: usize> Schlick<S, N> {
         Ok(Self { f0, f90 })
     }
 
-    /// Schlick with `f0 = ((η − 1)/(η + 1))²` from a real IOR per channel (`eta > 0`).
+    /// Schlick with `f0 = ((η − 1)/(η + 1))²` from a real IOR per channel,
+    /// `eta ∈ [MIN_ETA, MAX_ETA]` (the IOR domain of the module docs), else [`Error`].
     pub fn from_ior(eta: [S; N]) -> Result<Self, Error> {
         let mut f0 = eta;
         for i in 0..N {
-            error::positive("eta", eta[i])?;
+            check_eta(eta[i])?;
             f0[i] = f0_from_ior(eta[i]);
         }
         Self::new(f0)
     }
 
     /// Schlick with `f0` from a complex IOR per channel, `((η−1)² + k²)/((η+1)² + k²)`
-    /// (`eta > 0`, `k ≥ 0`). Reproduces the exact [`Conductor`] at normal and grazing
-    /// incidence only; see the module docs for its error in between.
+    /// (`eta ∈ [MIN_ETA, MAX_ETA]`, `k ∈ [0, MAX_K]`, else [`Error`]). Reproduces the exact
+    /// [`Conductor`] at normal and grazing incidence only; see the module docs for its error
+    /// in between.
     pub fn from_complex_ior(eta: [S; N], k: [S; N]) -> Result<Self, Error> {
         let mut f0 = eta;
         for i in 0..N {
-            error::positive("eta", eta[i])?;
-            error::non_negative("k", k[i])?;
+            check_eta(eta[i])?;
+            check_k(k[i])?;
             f0[i] = f0_from_complex_ior(eta[i], k[i]);
         }
         Self::new(f0)
@@ -880,34 +1069,46 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Schlick<R, N> {
 
 /// The exact Fresnel reflectance of a smooth dielectric, the same (real) relative IOR for
 /// every channel: [`FresnelTerm`] is implemented for every channel count `N` and returns
-/// `[dielectric(cos θd, eta); N]` (an uncoloured coat or glass; dispersion is not modelled).
+/// `[dielectric(|cos θd|, eta); N]` (an uncoloured coat or glass; dispersion is not modelled).
 ///
-/// `cos θd < 0` means incidence from inside and uses `1/eta`, as [`dielectric`].
+/// **Light arrives from the outside.** `eval` takes `|cos θd|` and keeps `eta`: unlike
+/// [`dielectric`], a negative cosine does **not** mean incidence from inside (no `1/eta`
+/// flip). In a BRDF both directions lie above the surface and `cos θd = wi·wm ≥ 0` for their
+/// half vector, so a negative value is a rounding residue of a grazing configuration; the
+/// flip would turn it into total internal reflection (`F = 1` instead of `≈ 1` from the other
+/// side of zero, and `1` instead of `0.089` at `cos θd = −0.5`, `η = 1.5`): a discontinuity
+/// made of rounding noise. For a surface lit from inside, build the term with `1/eta`.
 ///
 /// # Examples
 ///
 /// ```
-/// use brdf::fresnel::{Dielectric, FresnelTerm};
+/// use brdf::fresnel::{dielectric, Dielectric, FresnelTerm};
 /// let glass = Dielectric::new(1.5_f64).unwrap();
 /// let [f] = FresnelTerm::<f64, 1>::eval(&glass, 1.0);
 /// assert!((f - 0.04).abs() < 1e-15);
+/// // |cos θd|, no flip: the same as at +0.5 (dielectric(-0.5, 1.5) would be TIR, 1).
+/// assert_eq!(FresnelTerm::<f64, 1>::eval(&glass, -0.5), [dielectric(0.5, 1.5)]);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dielectric<R> {
-    eta: R,
+    consts: DielectricConsts<R>,
 }
 
 impl<S: Scalar> Dielectric<S> {
-    /// A dielectric interface with relative IOR `eta = η_t/η_i > 0`, else [`Error`].
+    /// A dielectric interface with relative IOR `eta = η_t/η_i ∈ [MIN_ETA, MAX_ETA]` (the
+    /// IOR domain of the module docs), else [`Error`].
     pub fn new(eta: S) -> Result<Self, Error> {
-        error::positive("eta", eta)?;
-        Ok(Self { eta })
+        check_eta(eta)?;
+        Ok(Self {
+            consts: DielectricConsts::of(eta, eta.recip()),
+        })
     }
 
-    /// The dielectric (`η ≥ 1`) whose normal-incidence reflectance is `f0`
-    /// (see [`ior_from_f0`]). `f0 ∈ [0, 1)`, else [`Error`]: `f0 = 1` has no real IOR.
+    /// The dielectric (`η ≥ 1`) whose normal-incidence reflectance is `f0` (see
+    /// [`ior_from_f0`]). `f0 ∈ [0, MAX_DIELECTRIC_F0]`, else [`Error`]: `f0 = 1` has no real
+    /// IOR, and above `MAX_DIELECTRIC_F0` the IOR exceeds [`MAX_ETA`].
     pub fn from_f0(f0: S) -> Result<Self, Error> {
-        error::check("f0", f0, "[0, 1)", |v| (0.0..1.0).contains(&v))?;
+        error::in_range("f0", f0, 0.0, MAX_DIELECTRIC_F0, F0_IOR_DOMAIN)?;
         // In f64: in f32, √f0 rounds to 1 for f0 within an ulp of 1.
         Self::new(S::of(ior_from_f0(f0.into())))
     }
@@ -916,7 +1117,7 @@ impl<S: Scalar> Dielectric<S> {
 impl<R: Real> Dielectric<R> {
     /// The relative IOR.
     pub fn eta(&self) -> R {
-        self.eta
+        self.consts.eta
     }
 }
 
@@ -924,8 +1125,15 @@ impl<S: Scalar> Splat for Dielectric<S> {
     type On<L: Real> = Dielectric<L>;
     #[inline]
     fn splat<L: Real>(&self) -> Dielectric<L> {
+        let k = &self.consts;
         Dielectric {
-            eta: splat_scalar(self.eta),
+            consts: DielectricConsts {
+                eta: splat_scalar(k.eta),
+                inv_eta: splat_scalar(k.inv_eta),
+                inv_eta2: splat_scalar(k.inv_eta2),
+                p: splat_scalar(k.p),
+                q: splat_scalar(k.q),
+            },
         }
     }
 }
@@ -933,14 +1141,14 @@ impl<S: Scalar> Splat for Dielectric<S> {
 impl<R: Real, const N: usize> FresnelTerm<R, N> for Dielectric<R> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
-        // cos θd ∈ [0, 1] here: light always arrives from the outside of the microfacet.
-        [oriented_amplitudes(cos_theta_d.abs(), self.eta).reflectance(); N]
+        let c = cos_theta_d.abs().min(R::one());
+        [dielectric_reflectance(c, c * c, self.consts); N]
     }
 
     #[inline(always)]
     fn eval_cos2(&self, cos_theta_d: R, cos2_theta_d: R) -> [R; N] {
         let c = cos_theta_d.abs().min(R::one());
-        [oriented_amplitudes_cos2(c, cos2_theta_d, self.eta).reflectance(); N]
+        [dielectric_reflectance(c, cos2_theta_d, self.consts); N]
     }
 }
 
@@ -965,17 +1173,19 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Dielectric<R> {
 pub struct Conductor<R, const N: usize> {
     eta: [R; N],
     k: [R; N],
-    /// Per channel `(η − 1)(η + 1) − k²` and `η²k²` (see `conductor_constants`).
-    e: [R; N],
+    /// Per channel the constants `p`, `q` and `η²k²` of `ConductorConsts`.
+    p: [R; N],
+    q: [R; N],
     nk2: [R; N],
 }
 
 impl<S: Scalar, const N: usize> Conductor<S, N> {
-    /// A conductor with `eta > 0` and `k ≥ 0` per channel, else [`Error`].
+    /// A conductor with `eta ∈ [MIN_ETA, MAX_ETA]` and `k ∈ [0, MAX_K]` per channel (the
+    /// IOR domain of the module docs), else [`Error`].
     pub fn new(eta: [S; N], k: [S; N]) -> Result<Self, Error> {
         for i in 0..N {
-            error::positive("eta", eta[i])?;
-            error::non_negative("k", k[i])?;
+            check_eta(eta[i])?;
+            check_k(k[i])?;
         }
         Ok(Self::from_valid(eta, k))
     }
@@ -983,22 +1193,27 @@ impl<S: Scalar, const N: usize> Conductor<S, N> {
     /// Builds the per-channel constants from already validated parameters.
     #[inline]
     fn from_valid(eta: [S; N], k: [S; N]) -> Self {
-        let c: [(S, S); N] = core::array::from_fn(|i| conductor_constants(eta[i], k[i]));
+        let c: [ConductorConsts<S>; N] =
+            core::array::from_fn(|i| ConductorConsts::of(eta[i], k[i]));
         Self {
             eta,
             k,
-            e: c.map(|c| c.0),
-            nk2: c.map(|c| c.1),
+            p: c.map(|c| c.p),
+            q: c.map(|c| c.q),
+            nk2: c.map(|c| c.nk2),
         }
     }
 
-    /// A conductor from Gulbrandsen's artist-friendly reflectivity `r ∈ [0, 1)` and edge
-    /// tint `g ∈ [0, 1]` per channel (see [`gulbrandsen_to_nk`]), else [`Error`].
+    /// A conductor from Gulbrandsen's artist-friendly reflectivity
+    /// `r ∈ [0, MAX_DIELECTRIC_F0]` and edge tint `g ∈ [0, 1]` per channel (see
+    /// [`gulbrandsen_to_nk`]), else [`Error`]. The bound on `r` keeps the IOR in the domain
+    /// (`n ≤ n_max(r) ≤ MAX_ETA`, `k ≤ n_max/2`): as `r → 1`, `n_max` grows like
+    /// `4/(1 − r)`.
     pub fn from_reflectivity_edge_tint(r: [S; N], g: [S; N]) -> Result<Self, Error> {
         let mut eta = r;
         let mut k = r;
         for i in 0..N {
-            error::check("r", r[i], "[0, 1)", |v| (0.0..1.0).contains(&v))?;
+            error::in_range("r", r[i], 0.0, MAX_DIELECTRIC_F0, F0_IOR_DOMAIN)?;
             error::unit_interval("g", g[i])?;
             let (n, kk) = gulbrandsen_to_nk::<f64>(r[i].into(), g[i].into());
             (eta[i], k[i]) = (S::of(n), S::of(kk));
@@ -1026,7 +1241,8 @@ impl<S: Scalar, const N: usize> Splat for Conductor<S, N> {
         Conductor {
             eta: splat_array(&self.eta),
             k: splat_array(&self.k),
-            e: splat_array(&self.e),
+            p: splat_array(&self.p),
+            q: splat_array(&self.q),
             nk2: splat_array(&self.nk2),
         }
     }
@@ -1042,7 +1258,14 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Conductor<R, N> {
     #[inline(always)]
     fn eval_cos2(&self, cos_theta_d: R, cos2_theta_d: R) -> [R; N] {
         let c = cos_theta_d.abs().min(R::one());
-        crate::real::channels(|i| conductor_from_constants(c, cos2_theta_d, self.e[i], self.nk2[i]))
+        crate::real::channels(|i| {
+            let k = ConductorConsts {
+                p: self.p[i],
+                q: self.q[i],
+                nk2: self.nk2[i],
+            };
+            k.reflectance(c, cos2_theta_d)
+        })
     }
 }
 
@@ -1079,7 +1302,8 @@ impl<S: Scalar, const N: usize> F82Tint<S, N> {
         Ok(Self { f0, b })
     }
 
-    /// Fitted to a complex IOR per channel (`eta > 0`, `k ≥ 0`, else [`Error`]): `F0` and
+    /// Fitted to a complex IOR per channel (`eta ∈ [MIN_ETA, MAX_ETA]`, `k ∈ [0, MAX_K]`,
+    /// else [`Error`]): `F0` and
     /// the reflectance at `cos θ = 1/7` are taken from the exact [`conductor`] Fresnel, so
     /// the model is exact at `μ = 1`, `1/7` and `0`. (The implied tint may exceed 1 for
     /// some metals; `b` is then negative, which the model handles.)
@@ -1087,8 +1311,8 @@ impl<S: Scalar, const N: usize> F82Tint<S, N> {
         let mut f0 = eta;
         let mut b = eta;
         for i in 0..N {
-            error::positive("eta", eta[i])?;
-            error::non_negative("k", k[i])?;
+            check_eta(eta[i])?;
+            check_k(k[i])?;
             let (n, kk): (f64, f64) = (eta[i].into(), k[i].into());
             let f0_i = conductor(1.0, n, kk);
             let f82 = conductor(F82_COS_THETA, n, kk);

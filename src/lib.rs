@@ -53,7 +53,9 @@
 //! * **Angles** are in radians; functions take cosines (`cos_theta_i`) where they can.
 //! * **Relative IOR** `eta = η_t / η_i`: the index of the side the light enters (inside, below
 //!   the surface) over the index of the side it comes from (outside, above). `eta > 1` for
-//!   air → glass. Incidence from inside (`cos_theta_i < 0`) uses `1/eta`.
+//!   air → glass. In the free dielectric functions, incidence from inside
+//!   (`cos_theta_i < 0`) uses `1/eta`; the Fresnel terms of BRDF models take `|cos θd|`
+//!   (light arrives from the outside; see [`fresnel::Dielectric`]).
 //! * **Complex IOR** of a conductor is written `eta + i·k` with extinction `k ≥ 0` (the
 //!   convention of pbrt and of most renderers, time dependence `e^{−iωt}`). The seed talk and
 //!   optics texts with `e^{+iωt}` write `n − iκ`: the same material, the conjugate number.

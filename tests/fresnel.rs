@@ -7,7 +7,7 @@ mod common;
 use approx::assert_abs_diff_eq;
 
 use brdf::fresnel::{self, *};
-use brdf::{Error, ior};
+use brdf::{Error, Real, ior};
 use num_complex::Complex;
 use proptest::prelude::*;
 
@@ -404,13 +404,18 @@ fn f0_conversions() {
         1.5,
         epsilon = 1e-6
     );
-    assert!(Dielectric::<f32>::from_f0(1.0 - f32::EPSILON / 2.0).is_ok());
+    // The domain ends at MAX_DIELECTRIC_F0 (the IOR would exceed MAX_ETA), in the lane
+    // precision.
+    let top = Dielectric::<f32>::from_f0(MAX_DIELECTRIC_F0 as f32).unwrap();
+    assert!(top.eta() <= MAX_ETA as f32 && top.eta() > 0.99 * MAX_ETA as f32);
+    assert!(Dielectric::<f32>::from_f0((MAX_DIELECTRIC_F0 as f32).next_up()).is_err());
+    assert!(Dielectric::<f64>::from_f0(MAX_DIELECTRIC_F0.next_up()).is_err());
     assert_eq!(
         Dielectric::<f64>::from_f0(1.0),
         Err(Error::OutOfDomain {
             param: "f0",
             value: 1.0,
-            domain: "[0, 1)"
+            domain: "[0, 0.9996]"
         })
     );
     assert!(Dielectric::<f64>::from_f0(-0.01).is_err());
@@ -845,4 +850,190 @@ fn schlick_complement_is_accurate_at_grazing() {
     common::assert_lanes_match!("schlick_complement", ulp = 0, abs = 0.0, &rows, fn(c) {
         brdf::fresnel::schlick_complement(c)
     });
+}
+
+// ----------------------------------------------------------------------------------------
+// Edge cases (issue 12 §4)
+// ----------------------------------------------------------------------------------------
+
+/// Cosines down to the smallest subnormals of both types, where `c²` underflows (below
+/// `≈ 1e-23` in `f32`, `≈ 1e-162` in `f64`) or loses digits (below `≈ 1e-19`, `1e-154`).
+const TINY_COSINES: [f64; 16] = [
+    0.0, 5e-324, 1e-320, 1e-300, 1e-162, 1e-155, 1e-45, 1e-40, 3e-23, 1e-23, 1e-20, 1e-19, 1e-10,
+    1e-7, 0.5, 1.0,
+];
+
+/// At `η = 1` exactly (an index-matched interface) nothing is reflected, at every angle and
+/// on every number type: the dielectric, its amplitudes, the Cook-Torrance (g, c) form, the
+/// conductor with `k = 0`, its complex amplitudes and the Fresnel terms are all exactly 0
+/// (they returned 1, or 0.029 for the conductor, where `c²` underflows).
+#[test]
+fn index_matched_reflects_nothing_at_any_angle() {
+    fn on<R: Real>(ty: &str) {
+        let one = R::one();
+        for &c64 in &TINY_COSINES {
+            let c = R::from_f64(c64);
+            let zero = |v: R, what: &str| {
+                for l in 0..R::LANES {
+                    let x: f64 = v.lane(l).into();
+                    assert!(x == 0.0, "{ty}: {what} = {x:e} at |c| = {c64:e}");
+                }
+            };
+            for c in [c, -c] {
+                zero(dielectric(c, one), "dielectric");
+                let a = dielectric_amplitudes(c, one);
+                zero(a.r_s, "r_s");
+                zero(a.r_p, "r_p");
+                zero(a.transmittance() - one, "1 − transmittance");
+                zero(cook_torrance_gc(c, one), "cook_torrance_gc");
+                zero(conductor(c, one, R::zero()), "conductor(c, 1, 0)");
+                let (rs, rp) = conductor_amplitudes(c, Complex::new(one, R::zero()));
+                for (name, z) in [("conductor r_s", rs), ("conductor r_p", rp)] {
+                    zero(z.re, name);
+                    zero(z.im, name);
+                }
+            }
+        }
+    }
+    on::<f32>("f32");
+    on::<f64>("f64");
+    on::<brdf::f32x8>("f32x8");
+    on::<brdf::f64x4>("f64x4");
+    on::<brdf::real::F32Fma>("F32Fma");
+    // The terms, through eval and through eval_cos2 (c² = |h|²/4 in a microfacet model).
+    let (d32, d64) = (
+        Dielectric::new(1.0_f32).unwrap(),
+        Dielectric::new(1.0_f64).unwrap(),
+    );
+    let (k32, k64) = (
+        Conductor::new([1.0_f32], [0.0]).unwrap(),
+        Conductor::new([1.0_f64], [0.0]).unwrap(),
+    );
+    for &c in &TINY_COSINES {
+        let c32 = c as f32;
+        assert_eq!(
+            FresnelTerm::<f32, 1>::eval(&d32, c32),
+            [0.0],
+            "Dielectric f32 at {c:e}"
+        );
+        assert_eq!(
+            FresnelTerm::<f64, 1>::eval(&d64, c),
+            [0.0],
+            "Dielectric f64 at {c:e}"
+        );
+        assert_eq!(k32.eval(c32), [0.0], "Conductor f32 at {c:e}");
+        assert_eq!(k64.eval(c), [0.0], "Conductor f64 at {c:e}");
+        // cos²θd a few ulp off c², as |h|²/4 is.
+        for c2 in [c32 * c32, (c32 * c32).next_up(), (c32 * c32 * 1.000001)] {
+            assert_eq!(
+                FresnelTerm::<f32, 1>::eval_cos2(&d32, c32, c2),
+                [0.0],
+                "at {c:e}"
+            );
+            assert_eq!(k32.eval_cos2(c32, c2), [0.0], "at {c:e}");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(common::config(256))]
+
+    /// `conductor(c, η, 0)` is `dielectric(c, η)` on both types, down to the smallest
+    /// cosines (where `√(t₀² + 4η²k²)` and `c²` underflow) and over the whole IOR domain.
+    #[test]
+    fn conductor_without_k_is_dielectric_down_to_subnormal_cosines(
+        i in 0usize..TINY_COSINES.len(), u in 0.0f64..=1.0, e in -4.0f64..=4.0, exact_one in any::<bool>()
+    ) {
+        let n = if exact_one { 1.0 } else { 10f64.powf(e) };
+        for c in [TINY_COSINES[i], 10f64.powf(-300.0 * u), u] {
+            let (a, b) = (conductor(c, n, 0.0), dielectric(c, n));
+            prop_assert!((a - b).abs() <= 1e-12, "f64 at c = {c:e}, η = {n}: {a:e} vs {b:e}");
+            let (c32, n32) = (c as f32, n as f32);
+            let (a, b) = (conductor(c32, n32, 0.0), dielectric(c32, n32));
+            prop_assert!((a - b).abs() <= 4e-6, "f32 at c = {c:e}, η = {n}: {a:e} vs {b:e}");
+        }
+    }
+
+    /// `cos θt ∈ [0, 1]` for every relative IOR, small ones included (244 in f32 and
+    /// 1.00004 in f64 at η = 1e-6 before), and accurate against `√(1 − (1 − c)(1 + c)/η²)`
+    /// in f64 for the f32 result.
+    #[test]
+    fn cos_theta_t_stays_in_unit_interval(e in -8.0f64..=8.0, u in common::unit(), below in any::<bool>()) {
+        let eta = 10f64.powf(e);
+        // Cosines at and a few ulp below 1, where the small-η interface is not totally
+        // reflecting, and uniform ones.
+        let c = if below { 1.0 - 1e-16 * (u * 8.0).floor() } else { u };
+        let a = dielectric_amplitudes(c, eta);
+        prop_assert!((0.0..=1.0).contains(&a.cos_theta_t), "f64: cos θt = {:e} at c = {c}, η = {eta:e}", a.cos_theta_t);
+        let (c32, eta32) = (c as f32, eta as f32);
+        let a = dielectric_amplitudes(c32, eta32);
+        prop_assert!((0.0..=1.0).contains(&a.cos_theta_t), "f32: cos θt = {:e} at c = {c32}, η = {eta32:e}", a.cos_theta_t);
+        let (cc, ee) = (f64::from(c32), f64::from(eta32));
+        let t2 = 1.0 - (1.0 - cc) * (1.0 + cc) / (ee * ee);
+        if t2 >= 0.0 {
+            let t = t2.sqrt();
+            prop_assert!((f64::from(a.cos_theta_t) - t).abs() <= 1e-6 + 1e-6 * t,
+                "f32: cos θt = {:e}, reference {t:e} at c = {c32}, η = {eta32:e}", a.cos_theta_t);
+        } else {
+            prop_assert_eq!(a.cos_theta_t, 0.0);
+        }
+    }
+}
+
+/// The `Dielectric` term takes `|cos θd|` and keeps `eta` (light arrives from the outside in
+/// a BRDF), as its docs say; the free function flips to `1/eta` for a negative cosine.
+#[test]
+fn dielectric_term_takes_the_magnitude_and_does_not_flip() {
+    let glass = Dielectric::new(1.5_f64).unwrap();
+    let f = |c: f64| FresnelTerm::<f64, 1>::eval(&glass, c)[0];
+    assert_eq!(f(-0.5), f(0.5));
+    assert_eq!(f(-0.5), dielectric(0.5, 1.5));
+    assert!((f(-0.5) - 0.0891).abs() < 1e-4, "{}", f(-0.5));
+    assert_eq!(
+        FresnelTerm::<f64, 1>::eval_cos2(&glass, -0.5, 0.25)[0],
+        f(0.5)
+    );
+    // The free function sees the same interface from inside: total internal reflection.
+    assert_eq!(dielectric(-0.5, 1.5), 1.0);
+    // Continuous through 0: a rounding residue below zero does not switch to TIR.
+    assert_eq!(f(-1e-9), f(1e-9));
+}
+
+/// Huge IORs: the free dielectric function is finite (≈ 1) where `η²` overflows, on both
+/// types (it was NaN at `η = 1e20` in f32 and `1e300` in f64); the constructors reject them.
+#[test]
+fn huge_ior_dielectric_is_finite_and_rejected_by_constructors() {
+    for c in [0.0f32, 1e-30, 1e-20, 0.5, 0.9, 1.0] {
+        for eta in [1e20_f32, 3e38, f32::MAX] {
+            let r = dielectric(c, eta);
+            assert!(
+                (0.0..=1.0).contains(&r) && r > 0.4,
+                "f32 dielectric({c}, {eta:e}) = {r}"
+            );
+        }
+    }
+    for c in [0.0f64, 1e-300, 0.5, 0.9, 1.0] {
+        let r = dielectric(c, 1e300);
+        assert!(
+            (0.0..=1.0).contains(&r) && r > 0.4,
+            "f64 dielectric({c}, 1e300) = {r}"
+        );
+    }
+    assert!((dielectric(0.9_f32, 1e20) - 1.0).abs() < 1e-6);
+    assert!(matches!(
+        Dielectric::new(1e20_f32),
+        Err(Error::OutOfDomain {
+            param: "eta",
+            domain: "[1e-4, 1e4]",
+            ..
+        })
+    ));
+    assert!(matches!(
+        Dielectric::new(1e300_f64),
+        Err(Error::OutOfDomain { param: "eta", .. })
+    ));
+    assert_eq!(
+        format!("{}", Dielectric::new(1e300_f64).unwrap_err()),
+        "parameter `eta` = 1e300 is outside its domain [1e-4, 1e4]"
+    );
 }

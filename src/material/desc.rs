@@ -159,7 +159,8 @@ pub enum Reflectance {
     Value(Rgb),
     /// `f0` of a preset's complex IOR.
     Preset(Preset),
-    /// `f0 = ((η − 1)² + k²)/((η + 1)² + k²)` of a complex IOR (`eta > 0`, `k ≥ 0`).
+    /// `f0 = ((η − 1)² + k²)/((η + 1)² + k²)` of a complex IOR (`eta ∈ [1e-4, 1e4]`,
+    /// `k ∈ [0, 1e4]`: the domains of [`crate::fresnel::Conductor::new`]).
     Ior {
         /// Real part of the relative IOR.
         eta: Rgb,
@@ -169,8 +170,8 @@ pub enum Reflectance {
 }
 
 impl Reflectance {
-    /// The reflectance per channel, validating a given IOR (`eta > 0`, `k ≥ 0`) and
-    /// reporting a bad one as `param`.
+    /// The reflectance per channel, validating a given IOR (the domains of
+    /// [`crate::fresnel::Conductor::new`]) and reporting a bad one as `param`.
     fn value(self) -> Result<[f64; 3], Error> {
         let (eta, k) = match self {
             Reflectance::Value(v) => return Ok(v.0),
@@ -179,8 +180,8 @@ impl Reflectance {
         };
         let mut f0 = [0.0; 3];
         for c in 0..3 {
-            let e = crate::error::positive("eta", eta[c])?;
-            let k = crate::error::non_negative("k", k[c])?;
+            let e = crate::fresnel::check_eta(eta[c])?;
+            let k = crate::fresnel::check_k(k[c])?;
             f0[c] = crate::fresnel::f0_from_complex_ior(e, k);
         }
         Ok(f0)
@@ -436,7 +437,7 @@ pub enum NdfDesc {
 pub enum FresnelDesc {
     /// The exact Fresnel term of a preset.
     Preset(Preset),
-    /// Exact dielectric Fresnel, relative IOR `eta > 0`.
+    /// Exact dielectric Fresnel, relative IOR `eta ∈ [1e-4, 1e4]`.
     Dielectric {
         /// Relative IOR.
         #[serde(deserialize_with = "field::eta")]
@@ -444,10 +445,10 @@ pub enum FresnelDesc {
     },
     /// Exact conductor Fresnel, complex IOR `eta + i k` per channel.
     Conductor {
-        /// Real part, `> 0`.
+        /// Real part, in `[1e-4, 1e4]`.
         #[serde(deserialize_with = "field::eta")]
         eta: Rgb,
-        /// Extinction, `≥ 0`.
+        /// Extinction, in `[0, 1e4]`.
         #[serde(deserialize_with = "field::k")]
         k: Rgb,
     },
