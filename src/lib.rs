@@ -71,6 +71,11 @@
 //!
 //! Parameters are validated once, by constructors that return [`Error`]; hot-path functions
 //! document their domain, do not branch per lane and never produce NaN or ∞ inside it.
+//! Every model may be splatted to `f32` ([`real::Splat`]), so the domains are derived on
+//! `f32` whatever type a model is built on: bounded where a formula stops representing
+//! anything in `f32` (IORs in `[1e-4, 1e4]`, Phong exponents up to `2e8 − 2`), and a
+//! finite value beyond `f32::MAX` is rejected as [`Error::DoesNotFit`] ("does not fit in
+//! f32"). `tests/domains.rs` evaluates every constructor over its whole domain.
 //!
 //! ## Feature flags
 //!

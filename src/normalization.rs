@@ -88,6 +88,21 @@ use crate::{Real, Scalar};
 /// [`tri_ace_exact`] by `(s + 2.04)/(8π)`. Use it with [`tri_ace_fit`].
 pub const TRI_ACE_OFFSET: f64 = 2.04;
 
+/// The largest offset `n` of a linear fit `(s + n)/(8π)` that a material accepts
+/// ([`Normalization::validate`]): `8`.
+///
+/// The exact factor's own offset [`tri_ace_exact_offset`] lies in `(2, 4]`, so every fit
+/// worth using has `n` there (the seed's 2.04, the minimax optima of [`best_fit_offset`]);
+/// `[0, 8]` also admits the plain `s/(8π)` (`n = 0`) and *Real-Time Rendering*'s `(s + 8)/(8π)`
+/// ([`blinn_phong_rtr_approx`]). A larger offset brightens every lobe beyond its exact
+/// normalization, and an unbounded one overflows the factor in `f32` (an offset of `1e300`
+/// gave ∞). [`fit_error`] measures any finite offset.
+pub const MAX_FIT_OFFSET: f64 = 8.0;
+
+/// [`crate::ndf::MAX_SHININESS`] (`2/MIN_ALPHA² − 2`), the bound of [`BlinnPhongLobe`]'s
+/// exponent; written out here because `ndf` builds on this module.
+const MAX_SHININESS: f64 = 2e8 - 2.0;
+
 /// `8π`, the denominator of the linear fits.
 const EIGHT_PI: f64 = 8.0 * core::f64::consts::PI;
 /// `4π`.
@@ -445,7 +460,8 @@ pub enum Normalization {
     TriAceExact,
     /// [`tri_ace_fit`]: `(s + offset)/(8π)`; the talk uses `offset = 2.04`.
     TriAceFit {
-        /// The offset `n` of `(s + n)/(8π)`, finite and `≥ 0` (see [`best_fit_offset`]).
+        /// The offset `n` of `(s + n)/(8π)`, in `[0, 8]` ([`MAX_FIT_OFFSET`]; see
+        /// [`best_fit_offset`]).
         offset: f64,
     },
     /// [`tri_ace_2010_fit`]: `0.0397436 s + 0.0856832`.
@@ -490,15 +506,17 @@ impl Normalization {
         }
     }
 
-    /// Checks the variant's own parameter: `offset` of [`Normalization::TriAceFit`] must be
-    /// finite and `≥ 0`.
+    /// Checks the variant's own parameter: `offset` of [`Normalization::TriAceFit`] must lie
+    /// in `[0, 8]` ([`MAX_FIT_OFFSET`]).
     ///
     /// # Errors
     ///
     /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming `"offset"`.
     pub fn validate(self) -> Result<Self, Error> {
         if let Normalization::TriAceFit { offset } = self {
-            error::non_negative("offset", offset)?;
+            error::check("offset", offset, "[0, 8]", |v| {
+                (0.0..=MAX_FIT_OFFSET).contains(&v)
+            })?;
         }
         Ok(self)
     }
@@ -536,12 +554,15 @@ impl<S: Scalar> BlinnPhongLobe<S> {
     ///
     /// # Errors
     ///
-    /// `shininess` NaN, infinite or negative ([`Error::NotFinite`] /
-    /// [`Error::OutOfDomain`] naming `"shininess"`, domain `[0, ∞)`); a
-    /// [`Normalization::TriAceFit`] offset that is not finite and `≥ 0` (`"offset"`).
+    /// `shininess` NaN, infinite or outside `[0, 2e8 − 2]` ([`Error::NotFinite`] /
+    /// [`Error::OutOfDomain`] naming `"shininess"`; the bound is
+    /// [`crate::ndf::MAX_SHININESS`], the sharpest lobe an `f32` direction resolves, and
+    /// `wide`'s lane `powf` overflows from `s ≈ 1.6e16` on); a [`Normalization::TriAceFit`]
+    /// offset outside `[0, 8]` (`"offset"`).
     #[inline]
     pub fn new(shininess: S, normalization: Normalization) -> Result<Self, Error> {
-        let shininess = error::non_negative("shininess", shininess)?;
+        let shininess =
+            error::in_range("shininess", shininess, 0.0, MAX_SHININESS, "[0, 2e8 − 2]")?;
         let normalization = normalization.validate()?;
         let factor = normalization.factor(shininess);
         Ok(Self {

@@ -8,6 +8,7 @@ use approx::assert_abs_diff_eq;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use brdf::Error;
+use brdf::ndf::MAX_SHININESS;
 use brdf::normalization::*;
 use proptest::prelude::*;
 
@@ -240,11 +241,13 @@ proptest! {
 
     #[test]
     fn lobe_is_finite_and_bounded_by_its_factor(s in shininess(), c in common::cos_theta()) {
+        // The lobe's domain ends at MAX_SHININESS (the factor functions above take any s).
+        let s = s.min(MAX_SHININESS);
         for n in [Normalization::TriAceExact, Normalization::TRI_ACE_2009_FIT] {
             let lobe = BlinnPhongLobe::new(s, n).unwrap();
             let v = lobe.eval(c);
             prop_assert!(v.is_finite() && v >= 0.0 && v <= lobe.factor());
-            let lobe32 = BlinnPhongLobe::new(s.min(1e37) as f32, n).unwrap();
+            let lobe32 = BlinnPhongLobe::new(s as f32, n).unwrap();
             let v32 = lobe32.eval(c as f32);
             prop_assert!(v32.is_finite() && v32 >= 0.0 && v32 <= lobe32.factor());
             prop_assert_eq!(lobe.eval(-c), if s == 0.0 { lobe.factor() } else { 0.0 });
@@ -516,7 +519,14 @@ fn fit_analysis_rejects_bad_ranges() {
 
 #[test]
 fn lobe_constructor_validates_once() {
-    let bad = [f32::NAN, f32::INFINITY, -1.0, -1e-30];
+    let bad = [
+        f32::NAN,
+        f32::INFINITY,
+        -1.0,
+        -1e-30,
+        (MAX_SHININESS as f32).next_up(),
+        1e9,
+    ];
     for s in bad {
         let e = BlinnPhongLobe::new(s, Normalization::TriAceExact).unwrap_err();
         assert!(
@@ -551,7 +561,8 @@ fn lobe_constructor_validates_once() {
         lobe.factor(),
         "0⁰ = 1: the s = 0 lobe is constant"
     );
-    let lobe = BlinnPhongLobe::new(1e9f32, Normalization::Unnormalized).unwrap();
+    // The sharpest accepted lobe: a mirror to f32 directions.
+    let lobe = BlinnPhongLobe::new(MAX_SHININESS as f32, Normalization::Unnormalized).unwrap();
     assert_eq!(
         (lobe.factor(), lobe.eval(1.0f32), lobe.eval(0.999_999f32)),
         (1.0, 1.0, 0.0)
@@ -772,7 +783,7 @@ fn lobe_eval_lanes_match_scalars() {
         .chain([1e-7, 0.999_999_9, 1.0])
         .collect();
     let mut worst = 0;
-    for s in [0.0, 1e-7, 1.0, 2.04, 64.0, 1e4, 1e6, 1e9] {
+    for s in [0.0, 1e-7, 1.0, 2.04, 64.0, 1e4, 1e6, MAX_SHININESS] {
         let rows: Vec<[f64; 2]> = cos.iter().map(|&c| [c, s]).collect();
         let w = common::assert_lanes_match!("BlinnPhongLobe::eval", ulp = 64, abs = 1e-30, &rows, fn(c, s) {
             let lobe = BlinnPhongLobe::<R::Scalar>::new(s.lane(0), Normalization::TriAceExact).unwrap();

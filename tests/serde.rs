@@ -449,10 +449,16 @@ fn non_finite_values_are_rejected_naming_the_field() {
     assert!(
         toml::from_str::<MaterialDesc>("model = \"oren_nayar\"\nrho = 0.5\nsigma = 1e400").is_err()
     );
-    // Finite in f64 but ∞ in f32: the f32 build is validated too.
+    // Finite in f64 but ∞ in f32: it does not fit in f32, the narrowest type a material may
+    // be splatted to (not "must be finite", what its conversion made of it); a bounded
+    // domain is reported as such.
+    toml_rejects(
+        "model = \"oren_nayar\"\nrho = 0.5\nsigma = 1e300",
+        &["`oren_nayar`", "`sigma`", "1e300", "does not fit in f32"],
+    );
     toml_rejects(
         "model = \"blinn_phong_classic\"\nrd = 0.1\nrs = 1\nf0 = 0.04\nshininess = 1e300",
-        &["`shininess`", "must be finite"],
+        &["`shininess`", "1e300", "outside its domain [0, 2e8 − 2]"],
     );
 }
 

@@ -26,14 +26,23 @@ use super::{
     splat_channels, unit_channels, upper,
 };
 use crate::fast::{ExactPow, ExactSqrt, PowFn, SqrtFn};
+use crate::ndf::MAX_SHININESS;
 use crate::normalization::{Normalization, TRI_ACE_OFFSET};
 use crate::real::{Splat, splat_array, splat_scalar};
 use crate::{Error, Real, Scalar, Vec3};
 
-/// Validates a Phong exponent: finite and `≥ 0`.
+/// Validates a Blinn-Phong exponent: `s ∈ [0, MAX_SHININESS]` ([`crate::ndf::MAX_SHININESS`]
+/// `= 2e8 − 2`, compared in the precision of `S`).
+///
+/// The bound is the one of the Blinn-Phong NDF: the exponent whose lobe is as narrow as the
+/// sharpest accepted microfacet roughness ([`crate::ndf::MIN_ALPHA`]), below the angular
+/// resolution of an `f32` half vector near the normal. Sharper lobes are a mirror to `f32`
+/// directions, and their normalization factors (`≈ s/(8π)`, divided by a floored cosine)
+/// overflow `f32` (`s = 3e38` gave ∞, and NaN away from the mirror direction).
 #[inline]
 fn shininess_of<S: Scalar>(s: S) -> Result<f64, Error> {
-    Ok(crate::error::non_negative("shininess", s)?.into())
+    let s = crate::error::in_range("shininess", s, 0.0, MAX_SHININESS, "[0, 2e8 − 2]")?;
+    Ok(s.into())
 }
 
 /// `F0 + (1 − F0)(1 − c)⁵` per channel ([`crate::fresnel::schlick`]).
@@ -66,7 +75,8 @@ fn schlick_channels<R: Real, const N: usize>(f0: &[R; N], c: R) -> [R; N] {
 /// * Dividing only by `cos θi` makes it **not reciprocal**, and the light-side albedo
 ///   `∫ f cos θo dωo` grows like `1/cos θi` at grazing incidence.
 ///
-/// Domain: `R_d, R_s, F0 ∈ [0, 1]`, `s ∈ [0, ∞)`. `cos θi` below [`DENOM_FLOOR`] is floored.
+/// Domain: `R_d, R_s, F0 ∈ [0, 1]`, `s ∈ [0, MAX_SHININESS]` ([`crate::ndf::MAX_SHININESS`]).
+/// `cos θi` below [`DENOM_FLOOR`] is floored.
 ///
 /// `S:` [`SqrtFn`] (default [`ExactSqrt`]; choose with [`BlinnPhongClassic::with_sqrt`])
 /// normalizes the half vector, `wm = h/|h|`: engines use a fast reciprocal square root here.
@@ -87,7 +97,8 @@ pub struct BlinnPhongClassic<R, const N: usize, S = ExactSqrt> {
 
 impl<T: Scalar, const N: usize> BlinnPhongClassic<T, N> {
     /// Engine Blinn-Phong with diffuse `rd`, specular coefficient `rs`, normal-incidence
-    /// Fresnel reflectance `f0` (all in `[0, 1]`) and exponent `shininess ∈ [0, ∞)`.
+    /// Fresnel reflectance `f0` (all in `[0, 1]`) and exponent
+    /// `shininess ∈ [0, MAX_SHININESS]` ([`crate::ndf::MAX_SHININESS`] `= 2e8 − 2`).
     ///
     /// # Errors
     /// Names `"rd"`, `"rs"`, `"f0"` or `"shininess"`.
@@ -248,7 +259,8 @@ impl SpecularDenominator for MaxCos {
 /// Fresnel, `y·log₂ x`, `exp2`), bit-identical to `eval` and faster on long-chain cores
 /// ([`crate::batch::Pipelined`]).
 ///
-/// Domain: `R_s, F0 ∈ [0, 1]`, `s ∈ [0, ∞)`.
+/// Domain: `R_s, F0 ∈ [0, 1]`, `s ∈ [0, MAX_SHININESS]` ([`crate::ndf::MAX_SHININESS`]),
+/// a [`Normalization::TriAceFit`] offset in `[0, 8]`.
 ///
 /// References: Y. Gotanda, "Basic of Reflectance", tri-Ace, Imagine Day 2009 (the seed);
 /// Y. Gotanda, SIGGRAPH 2010 course (the `max(N·L, N·V)` form); C. Schlick 1994.
@@ -264,7 +276,8 @@ pub struct NormalizedBlinnPhongSpecular<R, const N: usize, V = CosThetaI, P = Ex
 
 impl<S: Scalar, const N: usize> NormalizedBlinnPhongSpecular<S, N> {
     /// Lobe with specular intensity `rs ∈ [0, 1]`, Fresnel `f0 ∈ [0, 1]` per channel and
-    /// exponent `shininess ∈ [0, ∞)`; `c(s)` is computed once, in `f64`. The seed's
+    /// exponent `shininess ∈ [0, MAX_SHININESS]` ([`crate::ndf::MAX_SHININESS`]); `c(s)` is
+    /// computed once, in `f64`. The seed's
     /// [`CosThetaI`] denominator and [`ExactPow`]; choose others with
     /// [`Self::with_denominator`] and [`Self::with_pow`].
     ///
@@ -540,7 +553,8 @@ pub struct NormalizedBlinnPhong<R, const N: usize, V = CosThetaI, P = ExactPow> 
 
 impl<S: Scalar, const N: usize> NormalizedBlinnPhong<S, N> {
     /// The seed's model with diffuse `rd`, specular intensity `rs`, Fresnel `f0` (all in
-    /// `[0, 1]`) and exponent `shininess ∈ [0, ∞)`, with the seed's [`CosThetaI`]
+    /// `[0, 1]`) and exponent `shininess ∈ [0, MAX_SHININESS]` ([`crate::ndf::MAX_SHININESS`]),
+    /// with the seed's [`CosThetaI`]
     /// denominator and [`ExactPow`]; choose others with [`Self::with_denominator`] and
     /// [`Self::with_pow`].
     ///

@@ -96,14 +96,18 @@ impl<S: Scalar, const N: usize> KajiyaKay<S, N> {
         for (o, v) in t.iter_mut().zip(tangent) {
             *o = crate::error::check("tangent", v, "finite", |_| true)?.into();
         }
-        let len = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
-        if len <= 1e-30 {
+        // Scaled by the largest component first: any nonzero tangent normalizes, the
+        // subnormal ones included (their squares would underflow).
+        let m = t.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if m == 0.0 {
             return Err(Error::OutOfDomain {
                 param: "tangent",
-                value: len,
+                value: 0.0,
                 domain: "length > 0",
             });
         }
+        let t = t.map(|x| x / m);
+        let len = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
         let c = if normalized {
             1.0 / (2.0 * core::f64::consts::PI * wallis(p))
         } else {

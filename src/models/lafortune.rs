@@ -4,6 +4,7 @@ use super::{
     Brdf, Energy, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
 };
 use crate::Scalar;
+use crate::ndf::MAX_SHININESS;
 use crate::real::{Splat, splat_array, splat_scalar};
 use crate::{Error, Real, Vec3};
 
@@ -67,8 +68,13 @@ struct Lobe<R, const N: usize> {
 /// [`Energy::Conserving`] when `B ≤ 1` in every channel). A normalized Phong lobe
 /// (`−Cx = −Cy = Cz = 1`) with `ρ = (n + 2)/(2π)` meets it with equality.
 ///
-/// Domain: `ρd ∈ [0, 1]`; per lobe `Cx, Cy, Cz` finite, `n ∈ [0, ∞)`, `ρ ∈ [0, ∞)` with
-/// `ρ Cmax^n ≤ 1e30` (finite in `f32`).
+/// Domain: `ρd ∈ [0, 1]`; per lobe `Cx, Cy, Cz ∈ [−1e30, 1e30]`,
+/// `n ∈ [0, MAX_SHININESS]` (the Phong exponents' bound, [`crate::ndf::MAX_SHININESS`]: a
+/// sharper lobe is below `f32` direction resolution, and `wide`'s lane `powf` overflows for
+/// exponents from `≈ 1.6e16` on),
+/// `ρ ∈ [0, ∞)` with `Cmax^n ≤ 1e30` and `ρ Cmax^n ≤ 1e30` (`Cmax = max(|Cx|, |Cy|, |Cz|)`
+/// bounds the lobe's base, so every value is finite in `f32`; scaling every `C` by `λ` is
+/// scaling `ρ` by `λⁿ`, so the bounds cost no lobe shape).
 ///
 /// Reference: E. P. F. Lafortune, S.-C. Foo, K. E. Torrance, D. P. Greenberg, "Non-Linear
 /// Approximation of Reflectance Functions", SIGGRAPH 1997.
@@ -98,8 +104,8 @@ impl<S: Scalar, const N: usize, const K: usize> Lafortune<S, N, K> {
     /// Lambertian `rho_d ∈ [0, 1]` per channel plus `K` lobes.
     ///
     /// # Errors
-    /// Names `"rho_d"`, `"cx"`, `"cy"`, `"cz"`, `"n"` or `"rho"` (a lobe whose peak
-    /// `ρ Cmax^n` exceeds `1e30` is rejected naming `"n"`).
+    /// Names `"rho_d"`, `"cx"`, `"cy"`, `"cz"`, `"n"` or `"rho"` (a lobe whose `Cmax^n` or
+    /// peak `ρ Cmax^n` exceeds `1e30` is rejected naming `"n"`).
     pub fn new(rho_d: [S; N], lobes: [LafortuneLobe<S, N>; K]) -> Result<Self, Error> {
         let rho_d = unit_channels("rho_d", rho_d)?;
         let mut bound = rho_d;
@@ -111,10 +117,13 @@ impl<S: Scalar, const N: usize, const K: usize> Lafortune<S, N, K> {
             rho: [S::zero(); N],
         }; K];
         for (o, l) in out.iter_mut().zip(lobes) {
-            let fin =
-                |p, v: S| crate::error::check(p, v, "(−∞, ∞)", |_| true).map(Into::<f64>::into);
+            let fin = |p, v: S| {
+                crate::error::in_range(p, v, -LOBE_PEAK_MAX, LOBE_PEAK_MAX, "[−1e30, 1e30]")
+                    .map(Into::<f64>::into)
+            };
             let (cx, cy, cz) = (fin("cx", l.cx)?, fin("cy", l.cy)?, fin("cz", l.cz)?);
-            let n: f64 = crate::error::non_negative("n", l.n)?.into();
+            let n: f64 =
+                crate::error::in_range("n", l.n, 0.0, MAX_SHININESS, "[0, 2e8 − 2]")?.into();
             let mut rho = [0.0; N];
             for (r, &v) in rho.iter_mut().zip(&l.rho) {
                 *r = crate::error::non_negative("rho", v)?.into();
@@ -122,11 +131,15 @@ impl<S: Scalar, const N: usize, const K: usize> Lafortune<S, N, K> {
             let cmax = cx.abs().max(cy.abs()).max(cz.abs());
             let cmax_n = <f64 as Real>::pow(cmax, n);
             let rho_max = rho.iter().copied().fold(0.0, f64::max);
-            if rho_max * cmax_n > LOBE_PEAK_MAX || cmax_n.is_nan() {
+            // max|C|^n bounds the lobe's base to the power n (|wi·diag(C)·wo| ≤ max|C| for
+            // unit directions): finite in f32 even when ρ = 0 (0·∞ would be NaN).
+            // The bound in the precision of S, as the C bound (1e30_f32 > 1e30).
+            let peak_max: f64 = S::of(LOBE_PEAK_MAX).into();
+            if cmax_n > peak_max || rho_max * cmax_n > peak_max || cmax_n.is_nan() {
                 return Err(Error::OutOfDomain {
                     param: "n",
                     value: n,
-                    domain: "ρ·max|C|^n ≤ 1e30",
+                    domain: "max|C|^n ≤ 1e30 and ρ·max|C|^n ≤ 1e30",
                 });
             }
             for (b, r) in bound.iter_mut().zip(rho) {
