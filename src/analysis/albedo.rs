@@ -29,7 +29,7 @@ pub struct AlbedoConfig {
     /// narrower than 0.03 rad): initial nodes must be closer than the lobe width to see it.
     pub min_panels_theta: usize,
     /// Initial equal-width panels on each side of `φo` in the inner integrals (clamped to
-    /// `1..=64`; default 2).
+    /// `1..=58`, so that the kink edges fit in the 128 panels; default 2).
     pub min_panels_phi: usize,
 }
 
@@ -235,8 +235,10 @@ where
     let theta_o = super::angle(sin_o, cos_o);
     let theta_max = FRAC_PI_4 + 0.5 * theta_o;
 
-    // Initial panel edges in θm.
-    let mut breaks = [0.0f64; 17 + 101];
+    // Initial panel edges in θm: where lobes live, the kinks of Δ(θm), and where the kink
+    // curves of `kink_cosines` touch the plane of incidence, meet each other or reach the
+    // horizon (see `outer_kink_edges`).
+    let mut breaks = [0.0f64; 17 + OUTER_KINK_EDGES + 101];
     let candidates = [
         0.0,
         1e-4,
@@ -260,7 +262,7 @@ where
         theta_max,
     ];
     let mut n = 0;
-    for &c in &candidates {
+    for &c in candidates.iter().chain(&outer_kink_edges(theta_o, cos_o)) {
         if (0.0..=theta_max).contains(&c) {
             breaks[n] = c;
             n += 1;
@@ -271,20 +273,13 @@ where
         breaks[n] = theta_max * k as f64 / extra as f64;
         n += 1;
     }
-    let breaks = &mut breaks[..n];
-    breaks.sort_unstable_by(f64::total_cmp);
-    let mut m = 1;
-    for i in 1..breaks.len() {
-        if breaks[i] - breaks[m - 1] > 1e-12 {
-            breaks[m] = breaks[i];
-            m += 1;
-        }
-    }
-    let breaks = &breaks[..m];
+    let breaks = sorted_distinct(&mut breaks[..n]);
 
     let inner_tol = 0.25 * cfg.tolerance / theta_max;
     let max_phi = cfg.max_panels_phi.clamp(1, MAX_PANELS);
-    let per_side = cfg.min_panels_phi.clamp(1, 64);
+    let per_side = cfg
+        .min_panels_phi
+        .clamp(1, (MAX_PANELS - 2 * KINK_CURVES) / 2);
     adaptive(
         |theta_m| {
             let (s_m, c_m) = (f64m::sin(theta_m), f64m::cos(theta_m));
@@ -303,11 +298,25 @@ where
                 return Quad::ZERO;
             }
             // Equal panels on each side of φo (at least two by default: a narrow sliver of a
-            // feature cut by this θm line is then still seen by some node).
-            let mut inner = [0.0f64; 129];
-            for (k, b) in inner[..2 * per_side + 1].iter_mut().enumerate() {
-                *b = delta * (k as f64 - per_side as f64) / per_side as f64;
+            // feature cut by this θm line is then still seen by some node), plus edges where
+            // the kink curves cross this θm line.
+            let mut inner = [0.0f64; 129 + 2 * KINK_CURVES];
+            let mut k = 0;
+            for j in 0..=2 * per_side {
+                inner[k] = delta * (j as f64 - per_side as f64) / per_side as f64;
+                k += 1;
             }
+            for x in kink_cosines(cos_o, sin_o, c_m, s_m) {
+                // Inside the domain: |x| < 1 and wi.z = 2 (wo·wm) cos θm − cos θo > 0.
+                let inside = x.abs() < 1.0 && 2.0 * (cos_o * c_m + sin_o * s_m * x) * c_m > cos_o;
+                if inside {
+                    let d = super::angle(f64m::sqrt((1.0 - x) * (1.0 + x)), x).min(delta);
+                    inner[k] = d;
+                    inner[k + 1] = -d;
+                    k += 2;
+                }
+            }
+            let inner = sorted_distinct(&mut inner[..k]);
             adaptive(
                 |d| {
                     let (s_d, c_d) = (f64m::sin(d), f64m::cos(d));
@@ -331,7 +340,7 @@ where
                         evaluations: 1,
                     }
                 },
-                &inner[..2 * per_side + 1],
+                inner,
                 inner_tol,
                 max_phi,
             )
@@ -340,6 +349,114 @@ where
         cfg.tolerance,
         cfg.max_panels_theta,
     )
+}
+
+/// Sorts `v` and drops entries within 1e-12 of their predecessor; returns the kept prefix.
+fn sorted_distinct(v: &mut [f64]) -> &[f64] {
+    v.sort_unstable_by(f64::total_cmp);
+    let mut m = usize::from(!v.is_empty());
+    for i in 1..v.len() {
+        if v[i] - v[m - 1] > 1e-12 {
+            v[m] = v[i];
+            m += 1;
+        }
+    }
+    &v[..m]
+}
+
+/// Number of kink curves returned by [`kink_cosines`].
+const KINK_CURVES: usize = 6;
+
+/// Where the kink curves of the crate's models cross the line `θm = const` of the
+/// half-vector domain: `cos φ'` (`φ' = φm − φo`) per curve, NaN where a curve has no point
+/// on this line. The caller keeps the points inside the domain.
+///
+/// Every curve is the zero set of a function of `cos θi` and `wi·wo`. At fixed `θm`
+/// (`c = cos θm`, `s = sin θm`) both are functions of `u = wo·wm = cos θd` alone,
+///
+/// ```text
+/// u = cos θo c + sin θo s cos φ',   cos θi = 2uc − cos θo,   wi·wo = 2u² − 1,
+/// ```
+///
+/// so each curve is a level `u*` of `u`, i.e. `cos φ' = (u* − cos θo c)/(sin θo s)`:
+///
+/// | curve | models | `u*` | `cos φ'` |
+/// |---|---|---|---|
+/// | `cos θi = cos θo` | `max`/`min` of the cosines or angles (Ashikhmin-Shirley, `MaxCos`, Oren-Nayar, Fujii, V-cavity) | `cos θo / c` | `cot θo tan θm` |
+/// | V-cavity `G1(wo) = 1` (`2 cos θo cos θm = cos θd`) | `VCavity` | `2 cos θo c` | `cot θo cot θm` |
+/// | V-cavity `G1(wi) = 1` (`2 cos θi cos θm = cos θd`) | `VCavity` | `2 cos θo c/(4c² − 1)` | `cot θo (3 − 4c²)/((4c² − 1) tan θm)` |
+/// | `wi·wo = cos θi cos θo` (`cos(φi − φo) = 0`) | Oren-Nayar's `max(0, ·)`, Fujii's `s > 0` | root of `2u² − 2 cos θo c u − sin²θo` | `sin θo / (s (cos θo c + √(cos²θo c² + 2 sin²θo)))` |
+/// | `R·wi = 0`, `R` the mirror direction of `wo` | Phong/Lafortune mirror lobes `max(0, R·wi)ⁿ` | larger root of `2u² − 4 cos θo c u + 2cos²θo − 1` | `√(1/2 − cos²θo s²) / (sin θo s)` |
+/// | `wi·wo = 0` | Lafortune retro lobes `max(0, wi·wo)ⁿ` | `1/√2` | `(1/√2 − cos θo c)/(sin θo s)` |
+///
+/// (V-cavity: `G2 = min(1, G1(wo), G1(wi))` with `G1(v) = 2 cos θm cos θv / cos θd`; its
+/// third switch `G1(wo) = G1(wi)` is the first curve.) The `cos φ'` column is `u*` written
+/// without the cancellation of `u* − cos θo c`. The smaller root of `R·wi = 0`,
+/// `u = cos θo c − √(1/2 − cos²θo s²)`, gives `cos θi > 0` only where
+/// `cos θm < cos θo/√2 ≤ cos(π/4 + θo/2)`, outside the domain, so it is not listed.
+fn kink_cosines(cos_o: f64, sin_o: f64, c: f64, s: f64) -> [f64; KINK_CURVES] {
+    let den = sin_o * s;
+    if den.is_nan() || den <= 0.0 {
+        // Normal view or θm = 0: the curves are circles θm = const, handled as θm edges.
+        return [f64::NAN; KINK_CURVES];
+    }
+    let four_c2_1 = 4.0 * c * c - 1.0;
+    let v_cavity_i = if four_c2_1 > 0.0 {
+        cos_o * c * (3.0 - 4.0 * c * c) / (four_c2_1 * den)
+    } else {
+        f64::NAN
+    };
+    let q = f64m::sqrt(cos_o * cos_o * c * c + 2.0 * sin_o * sin_o);
+    let r2 = 0.5 - cos_o * cos_o * s * s;
+    let r = if r2 >= 0.0 { f64m::sqrt(r2) } else { f64::NAN };
+    [
+        cos_o * s / (sin_o * c),
+        cos_o * c / den,
+        v_cavity_i,
+        sin_o / (s * (cos_o * c + q)),
+        r / den,
+        (core::f64::consts::FRAC_1_SQRT_2 - cos_o * c) / den,
+    ]
+}
+
+/// Number of θm edges returned by [`outer_kink_edges`].
+const OUTER_KINK_EDGES: usize = 6;
+
+/// The `θm` where the kink curves of [`kink_cosines`] change the structure of the inner
+/// integrals, so that the outer integrand is smooth between edges: where a curve touches
+/// the plane of incidence (`cos φ' = ±1`, the two crossings of a `θm` line merge), where
+/// curves meet, and where they reach the horizon. (`θm = 0`, `θo/2` and `θo` are edges
+/// already.)
+///
+/// In the plane of incidence `wi` is at the signed angle `ψ` from the normal (positive on
+/// the side of `wo`), `cos θi = cos ψ`, `wi·wo = cos(ψ − θo)`, and its half vector is at
+/// `θm = |ψ + θo|/2`. Each curve's equation there is a product of cosines:
+///
+/// ```text
+/// V-cavity G1(wo) = 1:  2 cos θo cos ψ + 2cos²θo = 1 + cos(ψ − θo)  ⇔ cos(ψ + θo) + cos 2θo = 0
+///                       ⇔ ψ = π − 3θo                                     → θm = π/2 − θo
+/// V-cavity G1(wi) = 1:  cos 2ψ + cos(ψ + θo) = 0  ⇔ ψ = (±π − θo)/3        → θm = (π ± 2θo)/6
+/// cos θi = cos θo:      ψ = ±θo                                            → θm = θo, 0
+/// cos(φi − φo) = 0:     sin ψ sin θo = 0, ψ = 0                            → θm = θo/2
+/// R·wi = 0:             cos(ψ + θo) = 0, ψ = π/2 − θo                      → θm = π/4
+/// wi·wo = 0:            cos(ψ − θo) = 0, ψ = θo − π/2                      → θm = |θo − π/4|
+/// ```
+///
+/// The three V-cavity curves meet where `cos θo/c = 2 cos θo c`: `θm = π/4`. The last three
+/// curves reach the horizon (`wi.z = 0`, `wi·wo = 0`, i.e. `u = 1/√2 = cos θo/(2c)`) at
+/// `cos θm = cos θo/√2`; the first three stay above it (there `cos θi ≥ cos θo` or
+/// `2 cos θi cos θm = cos θd > 0`).
+fn outer_kink_edges(theta_o: f64, cos_o: f64) -> [f64; OUTER_KINK_EDGES] {
+    use core::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2};
+    let c = cos_o * FRAC_1_SQRT_2;
+    [
+        FRAC_PI_2 - theta_o,
+        (PI + 2.0 * theta_o) / 6.0,
+        (PI - 2.0 * theta_o) / 6.0,
+        FRAC_PI_4,
+        (theta_o - FRAC_PI_4).abs(),
+        super::angle(f64m::sqrt((1.0 - c) * (1.0 + c)), c),
+    ]
 }
 
 /// Accuracy and effort of [`hemispherical_albedo`].
@@ -487,5 +604,100 @@ impl<B: Brdf<f32, N>, const N: usize> Brdf<f64, N> for F32Brdf<B> {
     #[inline]
     fn properties(&self) -> Properties {
         self.0.properties()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `wi` of the half vector at `(θm, φ')` for `wo = (sin θo, 0, cos θo)`.
+    fn wi_of(theta_o: f64, theta_m: f64, cos_phi: f64, sign: f64) -> (Vec3<f64>, Vec3<f64>) {
+        let wo = Vec3::new(theta_o.sin(), 0.0, theta_o.cos());
+        let sin_phi = sign * (1.0 - cos_phi * cos_phi).max(0.0).sqrt();
+        let (s, c) = theta_m.sin_cos();
+        let wm = Vec3::new(s * cos_phi, s * sin_phi, c);
+        (wm.scale(2.0 * wo.dot(wm)).add(wo.scale(-1.0)), wo)
+    }
+
+    /// The kink functions, written directly on `(wi, wo)` (V-cavity `G1(v) = 2 (n·m)(n·v)/(v·m)`
+    /// with `m` the half vector).
+    fn kinks(wi: Vec3<f64>, wo: Vec3<f64>) -> [f64; KINK_CURVES] {
+        let m = wi.add(wo).scale(1.0 / wi.add(wo).length());
+        let g1 = |v: Vec3<f64>| 2.0 * m.z * v.z / v.dot(m);
+        let r = Vec3::new(-wo.x, -wo.y, wo.z);
+        let rw = r.dot(wi);
+        [
+            wi.z - wo.z,
+            g1(wo) - 1.0,
+            g1(wi) - 1.0,
+            wi.x * wo.x + wi.y * wo.y,
+            rw,
+            wi.dot(wo),
+        ]
+    }
+
+    #[test]
+    fn kink_cosines_lie_on_their_curves() {
+        let mut found = [0usize; KINK_CURVES];
+        for i in 1..60 {
+            let theta_o = 1.55 * f64::from(i) / 60.0;
+            for j in 1..80 {
+                let theta_m = (FRAC_PI_4 + 0.5 * theta_o) * f64::from(j) / 80.0;
+                let (s, c) = theta_m.sin_cos();
+                let xs = kink_cosines(theta_o.cos(), theta_o.sin(), c, s);
+                for (k, &x) in xs.iter().enumerate() {
+                    if x.is_nan() || x.abs() >= 1.0 {
+                        continue;
+                    }
+                    for sign in [1.0, -1.0] {
+                        let (wi, wo) = wi_of(theta_o, theta_m, x, sign);
+                        if wi.z <= 0.0 {
+                            continue;
+                        }
+                        let v = kinks(wi, wo)[k];
+                        assert!(v.abs() < 1e-11, "curve {k} θo {theta_o} θm {theta_m}: {v}");
+                        found[k] += 1;
+                    }
+                }
+            }
+        }
+        // Every curve has points above the horizon somewhere.
+        assert!(found.iter().all(|&n| n > 20), "{found:?}");
+    }
+
+    #[test]
+    fn outer_kink_edges_are_where_curves_touch_the_plane_or_the_horizon() {
+        for i in 1..40 {
+            let theta_o = 1.55 * f64::from(i) / 40.0;
+            let (cos_o, sin_o) = (theta_o.cos(), theta_o.sin());
+            let e = outer_kink_edges(theta_o, cos_o);
+            let x_at = |t: f64, k: usize| kink_cosines(cos_o, sin_o, t.cos(), t.sin())[k];
+            // Turning points: |cos φ'| = 1 on the curve (V-cavity G1(wo): e[0]; G1(wi): e[1],
+            // e[2]; wi·wo = 0: e[4]; R·wi = 0: π/4), where the edge is inside the θm range.
+            let theta_max = FRAC_PI_4 + 0.5 * theta_o;
+            for (edge, k) in [(e[0], 1), (e[1], 2), (e[2], 2), (e[4], 5), (e[3], 4)] {
+                if edge > 1e-3 && edge < theta_max - 1e-3 {
+                    let x = x_at(edge, k);
+                    if x.is_finite() {
+                        assert!((x.abs() - 1.0).abs() < 1e-9, "θo {theta_o} curve {k}: {x}");
+                    }
+                }
+            }
+            // The three V-cavity curves meet at θm = π/4.
+            let v = [x_at(FRAC_PI_4, 0), x_at(FRAC_PI_4, 1), x_at(FRAC_PI_4, 2)];
+            assert!(
+                (v[0] - v[1]).abs() < 1e-12 && (v[1] - v[2]).abs() < 1e-12,
+                "{v:?}"
+            );
+            // The last three curves reach the horizon at cos θm = cos θo/√2.
+            let t = e[5];
+            for k in [3, 4, 5] {
+                let x = x_at(t, k);
+                assert!(x.abs() <= 1.0 + 1e-9, "θo {theta_o} curve {k}: {x}");
+                let (wi, _) = wi_of(theta_o, t, x.clamp(-1.0, 1.0), 1.0);
+                assert!(wi.z.abs() < 1e-9, "θo {theta_o} curve {k}: {wi:?}");
+            }
+        }
     }
 }
