@@ -6,7 +6,7 @@ use approx::assert_abs_diff_eq;
 
 use brdf::Vec3;
 use brdf::analysis::{
-    AlbedoConfig, DirectionGrid, F32Brdf, HemisphericalConfig, cosine_hemisphere,
+    AlbedoConfig, DirectionGrid, F32Brdf, FnBrdf, HemisphericalConfig, cosine_hemisphere,
     directional_albedo, directional_albedo_estimate, fibonacci_hemisphere, hemispherical_albedo,
     reciprocity_check, uniform_hemisphere, white_furnace,
 };
@@ -646,6 +646,67 @@ fn f32_brdfs_are_analysed_through_the_adapter() {
         // f32 rounding of 1/π is 2.8e-8 relative.
         assert!((a - 1.0).abs() < 1e-6 && (h - 0.5).abs() < 1e-6, "{a} {h}");
     }
+}
+
+/// Closures (`FnBrdf`, f64 and f32), `Brdf<f32, N>` models passed directly, `F32Brdf` and
+/// trait objects all reach the same integrator: the same BRDF gives bit-identical results
+/// through each, in every analysis function.
+#[test]
+fn closures_and_f32_models_are_analysed_like_models() {
+    use brdf::models::AshikhminShirley;
+    let m64 = AshikhminShirley::<f64, 1>::new([0.5], [0.05], 30.0, 5.0).unwrap();
+    let m32 = AshikhminShirley::<f32, 1>::new([0.5], [0.05], 30.0, 5.0).unwrap();
+    let c64 = FnBrdf::new(|wi, wo| m64.eval(wi, wo));
+    let c32 = FnBrdf::new_f32(|wi, wo| m32.eval(wi, wo));
+    let cfg = AlbedoConfig::FAST;
+    for (mu, phi) in [(1.0, 0.0), (0.5, 1.0), (1e-3, 2.5)] {
+        let wo = dir(mu, phi);
+        let a = directional_albedo_estimate(&m64, wo, &cfg);
+        assert_eq!(a, directional_albedo_estimate(&c64, wo, &cfg));
+        let dyn64: &dyn Brdf<f64, 1> = &m64;
+        assert_eq!(a, directional_albedo_estimate(dyn64, wo, &cfg));
+        let b = directional_albedo_estimate(&m32, wo, &cfg);
+        assert_eq!(b, directional_albedo_estimate(&F32Brdf(m32), wo, &cfg));
+        assert_eq!(b, directional_albedo_estimate(&c32, wo, &cfg));
+        // f32 against f64: f32 rounding of the BRDF values (≤ 2e-5 relative, README).
+        assert!(
+            (a.value[0] - b.value[0]).abs() < 2e-5 * a.value[0],
+            "{a:?} {b:?}"
+        );
+        assert!(b.value != a.value, "the f32 path must evaluate in f32");
+    }
+    let grid = DirectionGrid::new(4, 3, 1e-3);
+    assert_eq!(
+        reciprocity_check(&m64, grid.pairs()),
+        reciprocity_check(&c64, grid.pairs())
+    );
+    assert_eq!(
+        reciprocity_check(&m32, grid.pairs()),
+        reciprocity_check(&c32, grid.pairs())
+    );
+    assert_eq!(
+        white_furnace(&m64, grid, &cfg),
+        white_furnace(&c64, grid, &cfg)
+    );
+    assert_eq!(
+        white_furnace(&m32, grid, &cfg),
+        white_furnace(&c32, grid, &cfg)
+    );
+    let hcfg = HemisphericalConfig {
+        max_panels: 1,
+        albedo: cfg,
+        ..HemisphericalConfig::ISOTROPIC
+    };
+    assert_eq!(
+        hemispherical_albedo(&m32, &hcfg),
+        hemispherical_albedo(&c32, &hcfg)
+    );
+    // A closure that is not reciprocal is found like a model that is not.
+    let tilted = FnBrdf::new(|wi: Vec3<f64>, wo: Vec3<f64>| Tilted.eval(wi, wo));
+    assert_eq!(
+        reciprocity_check(&tilted, grid.pairs()),
+        reciprocity_check(&Tilted, grid.pairs())
+    );
 }
 
 // ---------------------------------------------------------------------------------------------

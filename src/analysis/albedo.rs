@@ -1,9 +1,10 @@
 //! Directional and hemispherical albedo by adaptive quadrature in the half-vector domain.
 
+use super::integrand::{Integrand, eval_f64};
 use super::quadrature::{MAX_PANELS, Quad, adaptive};
-use crate::Vec3;
 use crate::math::f64m;
 use crate::models::{Brdf, Properties};
+use crate::{Scalar, Vec3};
 use core::f64::consts::{FRAC_PI_4, PI};
 
 /// Accuracy and effort of [`directional_albedo`].
@@ -92,7 +93,7 @@ pub struct AlbedoEstimate<const N: usize> {
     /// Error estimate: absolute, maximum over channels (an upper bound in practice, not a
     /// guarantee: a lobe narrower than the sampling that no node touches is invisible).
     pub error: f64,
-    /// Number of `Brdf::eval` calls made.
+    /// Number of BRDF evaluations made.
     pub evaluations: u64,
 }
 
@@ -119,34 +120,30 @@ impl<const N: usize> From<Quad<N>> for AlbedoEstimate<N> {
 /// # Examples
 ///
 /// ```
-/// use brdf::analysis::{AlbedoConfig, directional_albedo};
-/// use brdf::models::{Brdf, Energy, Properties, Reciprocity};
+/// use brdf::analysis::{AlbedoConfig, FnBrdf, directional_albedo};
+/// use brdf::models::Lambert;
 /// use brdf::Vec3;
 ///
-/// /// Lambert with reflectance 0.8: f = 0.8/π.
-/// struct Lambert;
-/// impl Brdf<f64, 1> for Lambert {
-///     fn eval(&self, wi: Vec3<f64>, wo: Vec3<f64>) -> [f64; 1] {
-///         [if wi.z > 0.0 && wo.z > 0.0 { 0.8 / core::f64::consts::PI } else { 0.0 }]
-///     }
-///     fn properties(&self) -> Properties {
-///         Properties { reciprocity: Reciprocity::Reciprocal, energy: Energy::Conserving }
-///     }
-/// }
-///
-/// // Grazing view, cos θo = 1e-4: still 0.8.
+/// // Grazing view, cos θo = 1e-4.
 /// let wo = Vec3::new((1.0f64 - 1e-8).sqrt(), 0.0, 1e-4);
-/// let [rho] = directional_albedo(&Lambert, wo, &AlbedoConfig::default());
+/// // A model of the crate (f64 or f32)...
+/// let [rho] = directional_albedo(&Lambert::<f32, 1>::new([0.8])?, wo, &AlbedoConfig::default());
 /// assert!((rho - 0.8).abs() < 1e-6);
+/// // ...or a closure: f = 0.8/π.
+/// let lambert = FnBrdf::new(|_wi, _wo| [0.8 / core::f64::consts::PI]);
+/// let [rho] = directional_albedo(&lambert, wo, &AlbedoConfig::default());
+/// assert!((rho - 0.8).abs() < 1e-6);
+/// # Ok::<(), brdf::Error>(())
 /// ```
 #[must_use]
-pub fn directional_albedo<B, const N: usize>(
+pub fn directional_albedo<B, S, const N: usize>(
     brdf: &B,
     wo: Vec3<f64>,
     cfg: &AlbedoConfig,
 ) -> [f64; N]
 where
-    B: Brdf<f64, N> + ?Sized,
+    B: Integrand<S, N> + ?Sized,
+    S: Scalar,
 {
     directional_albedo_estimate(brdf, wo, cfg).value
 }
@@ -202,20 +199,22 @@ where
 /// G. Humphreys, *Physically Based Rendering*, 4th ed., 2023, §9.1 (directional albedo
 /// `ρ_hd`).
 #[must_use]
-pub fn directional_albedo_estimate<B, const N: usize>(
+pub fn directional_albedo_estimate<B, S, const N: usize>(
     brdf: &B,
     wo: Vec3<f64>,
     cfg: &AlbedoConfig,
 ) -> AlbedoEstimate<N>
 where
-    B: Brdf<f64, N> + ?Sized,
+    B: Integrand<S, N> + ?Sized,
+    S: Scalar,
 {
     albedo_quad(brdf, wo, cfg).into()
 }
 
-fn albedo_quad<B, const N: usize>(brdf: &B, wo: Vec3<f64>, cfg: &AlbedoConfig) -> Quad<N>
+fn albedo_quad<B, S, const N: usize>(brdf: &B, wo: Vec3<f64>, cfg: &AlbedoConfig) -> Quad<N>
 where
-    B: Brdf<f64, N> + ?Sized,
+    B: Integrand<S, N> + ?Sized,
+    S: Scalar,
 {
     let len = wo.length();
     if !(len > 0.0 && len.is_finite()) {
@@ -332,7 +331,7 @@ where
                             evaluations: 0,
                         };
                     }
-                    let f = brdf.eval(wi, wo);
+                    let f = eval_f64(brdf, wi, wo);
                     let jac = wi.z * 4.0 * o_m * s_m;
                     Quad {
                         value: f.map(|v| v * jac),
@@ -515,33 +514,22 @@ impl Default for HemisphericalConfig {
 /// # Examples
 ///
 /// ```
-/// use brdf::analysis::{HemisphericalConfig, hemispherical_albedo};
-/// use brdf::models::{Brdf, Energy, Properties, Reciprocity};
-/// use brdf::Vec3;
+/// use brdf::analysis::{FnBrdf, HemisphericalConfig, hemispherical_albedo};
 ///
-/// /// A BRDF rising linearly with both cosines: f = 3 (cos θi + cos θo) / (4π).
-/// struct Rising;
-/// impl Brdf<f64, 1> for Rising {
-///     fn eval(&self, wi: Vec3<f64>, wo: Vec3<f64>) -> [f64; 1] {
-///         let ok = wi.z > 0.0 && wo.z > 0.0;
-///         [if ok { 3.0 * (wi.z + wo.z) / (4.0 * core::f64::consts::PI) } else { 0.0 }]
-///     }
-///     fn properties(&self) -> Properties {
-///         Properties { reciprocity: Reciprocity::Reciprocal, energy: Energy::Conserving }
-///     }
-/// }
-///
+/// // A BRDF rising linearly with both cosines: f = 3 (cos θi + cos θo) / (4π).
+/// let rising = FnBrdf::new(|wi, wo| [3.0 * (wi.z + wo.z) / (4.0 * core::f64::consts::PI)]);
 /// // ρ(wo) = 1/2 + 3 cos θo / 4, so ρ_hh = 2 ∫₀¹ (1/2 + 3μ/4) μ dμ = 1.
-/// let est = hemispherical_albedo(&Rising, &HemisphericalConfig::ISOTROPIC);
+/// let est = hemispherical_albedo(&rising, &HemisphericalConfig::ISOTROPIC);
 /// assert!((est.value[0] - 1.0).abs() < 1e-6);
 /// ```
 #[must_use]
-pub fn hemispherical_albedo<B, const N: usize>(
+pub fn hemispherical_albedo<B, S, const N: usize>(
     brdf: &B,
     cfg: &HemisphericalConfig,
 ) -> AlbedoEstimate<N>
 where
-    B: Brdf<f64, N> + ?Sized,
+    B: Integrand<S, N> + ?Sized,
+    S: Scalar,
 {
     let p = cfg.phi_samples.max(1);
     let scale = 2.0 / p as f64; // (1/π) · (2π/P)
@@ -569,7 +557,11 @@ where
 }
 
 /// Evaluates an `f32` BRDF through the `f64` interface (directions rounded to `f32`, values
-/// widened), so that the analysis functions apply to `Brdf<f32, N>` models too.
+/// widened): a `Brdf<f64, N>` made of a `Brdf<f32, N>`.
+///
+/// The analysis functions no longer need it (they take `Brdf<f32, N>` models directly, see
+/// [`Integrand`]) and give the same results bit for bit with or without it; it remains for
+/// code that needs a `Brdf<f64, N>`.
 ///
 /// # Examples
 ///

@@ -1,8 +1,8 @@
 //! Reciprocity and white-furnace checks over sets of directions.
 
 use super::albedo::{AlbedoConfig, directional_albedo_estimate};
-use crate::Vec3;
-use crate::models::Brdf;
+use super::integrand::{Integrand, eval_f64};
+use crate::{Scalar, Vec3};
 
 /// The largest violation of one kind found by a check, and where.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -57,34 +57,25 @@ pub struct Violation {
 /// # Examples
 ///
 /// ```
-/// use brdf::analysis::{DirectionGrid, reciprocity_check};
-/// use brdf::models::{Brdf, Energy, Properties, Reciprocity};
-/// use brdf::Vec3;
+/// use brdf::analysis::{DirectionGrid, FnBrdf, reciprocity_check};
 ///
-/// /// Not reciprocal: depends on cos θo only.
-/// struct ViewDependent;
-/// impl Brdf<f64, 1> for ViewDependent {
-///     fn eval(&self, wi: Vec3<f64>, wo: Vec3<f64>) -> [f64; 1] {
-///         [if wi.z > 0.0 && wo.z > 0.0 { (1.0 + wo.z) / (2.0 * core::f64::consts::PI) } else { 0.0 }]
-///     }
-///     fn properties(&self) -> Properties {
-///         let note = "depends on wo only";
-///         Properties { reciprocity: Reciprocity::NotReciprocal { note }, energy: Energy::Conserving }
-///     }
-/// }
-///
-/// let v = reciprocity_check(&ViewDependent, DirectionGrid::DEFAULT.pairs());
+/// // Not reciprocal: depends on cos θo only.
+/// let view_dependent = FnBrdf::new(|wi, wo| {
+///     [if wi.z > 0.0 && wo.z > 0.0 { (1.0 + wo.z) / (2.0 * core::f64::consts::PI) } else { 0.0 }]
+/// });
+/// let v = reciprocity_check(&view_dependent, DirectionGrid::DEFAULT.pairs());
 /// // The worst pair is one at normal incidence against one at grazing incidence.
 /// assert!(v.rel.value > 0.49);
 /// assert!(v.rel.wi.z.max(v.rel.wo.z) == 1.0 && v.rel.wi.z.min(v.rel.wo.z) <= 1e-4);
 /// ```
 #[must_use]
-pub fn reciprocity_check<B, const N: usize>(
+pub fn reciprocity_check<B, S, const N: usize>(
     brdf: &B,
     pairs: impl IntoIterator<Item = (Vec3<f64>, Vec3<f64>)>,
 ) -> Violation
 where
-    B: Brdf<f64, N> + ?Sized,
+    B: Integrand<S, N> + ?Sized,
+    S: Scalar,
 {
     let mut out = Violation {
         abs: Worst::NONE,
@@ -92,8 +83,8 @@ where
         checked: 0,
     };
     for (wi, wo) in pairs {
-        let a = brdf.eval(wi, wo);
-        let b = brdf.eval(wo, wi);
+        let a = eval_f64(brdf, wi, wo);
+        let b = eval_f64(brdf, wo, wi);
         for ch in 0..N {
             let (x, y) = (a[ch], b[ch]);
             let (abs, rel) = if !(x.is_finite() && y.is_finite()) {
@@ -177,34 +168,23 @@ impl FurnaceReport {
 /// # Examples
 ///
 /// ```
-/// use brdf::analysis::{AlbedoConfig, DirectionGrid, white_furnace};
-/// use brdf::models::{Brdf, Energy, Properties, Reciprocity};
-/// use brdf::Vec3;
+/// use brdf::analysis::{AlbedoConfig, DirectionGrid, FnBrdf, white_furnace};
 ///
-/// /// Over-bright Lambert, f = 1.2/π.
-/// struct Bright;
-/// impl Brdf<f64, 1> for Bright {
-///     fn eval(&self, wi: Vec3<f64>, wo: Vec3<f64>) -> [f64; 1] {
-///         [if wi.z > 0.0 && wo.z > 0.0 { 1.2 / core::f64::consts::PI } else { 0.0 }]
-///     }
-///     fn properties(&self) -> Properties {
-///         let note = "albedo 1.2";
-///         Properties { reciprocity: Reciprocity::Reciprocal, energy: Energy::NotConserving { note } }
-///     }
-/// }
-///
-/// let r = white_furnace(&Bright, DirectionGrid::new(3, 2, 1e-3), &AlbedoConfig::FAST);
+/// // Over-bright Lambert, f = 1.2/π.
+/// let bright = FnBrdf::new(|_wi, _wo| [1.2 / core::f64::consts::PI]);
+/// let r = white_furnace(&bright, DirectionGrid::new(3, 2, 1e-3), &AlbedoConfig::FAST);
 /// assert!(!r.conserves_energy(0.0));
 /// assert!((r.max_albedo - 1.2).abs() < 1e-4);
 /// ```
 #[must_use]
-pub fn white_furnace<B, const N: usize>(
+pub fn white_furnace<B, S, const N: usize>(
     brdf: &B,
     wos: impl IntoIterator<Item = Vec3<f64>>,
     cfg: &AlbedoConfig,
 ) -> FurnaceReport
 where
-    B: Brdf<f64, N> + ?Sized,
+    B: Integrand<S, N> + ?Sized,
+    S: Scalar,
 {
     let zero = Vec3::new(0.0, 0.0, 0.0);
     let mut r = FurnaceReport {

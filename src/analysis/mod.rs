@@ -66,6 +66,7 @@
 mod albedo;
 mod checks;
 mod grid;
+mod integrand;
 mod quadrature;
 
 pub use albedo::{
@@ -77,6 +78,7 @@ pub use grid::{
     DirectionGrid, FibonacciHemisphere, GridDirections, GridPairs, cosine_hemisphere,
     fibonacci_hemisphere, uniform_hemisphere,
 };
+pub use integrand::{FnBrdf, Integrand};
 
 #[allow(unused_imports)]
 use crate::models::Brdf;
