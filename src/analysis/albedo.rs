@@ -261,10 +261,16 @@ where
         theta_max,
     ];
     let mut n = 0;
-    for &c in candidates.iter().chain(&outer_kink_edges(theta_o, cos_o)) {
+    let mut kink_edges = 0;
+    for (i, &c) in candidates
+        .iter()
+        .chain(&outer_kink_edges(theta_o, cos_o))
+        .enumerate()
+    {
         if (0.0..=theta_max).contains(&c) {
             breaks[n] = c;
             n += 1;
+            kink_edges += usize::from(i >= candidates.len());
         }
     }
     let extra = cfg.min_panels_theta.clamp(1, 100);
@@ -315,6 +321,7 @@ where
                     k += 2;
                 }
             }
+            let kink_points = k - (2 * per_side + 1);
             let inner = sorted_distinct(&mut inner[..k]);
             adaptive(
                 |d| {
@@ -341,12 +348,13 @@ where
                 },
                 inner,
                 inner_tol,
-                max_phi,
+                // Kink edges are structural (like the horizon): on top of the budget.
+                max_phi + kink_points,
             )
         },
         breaks,
         cfg.tolerance,
-        cfg.max_panels_theta,
+        cfg.max_panels_theta + kink_edges,
     )
 }
 
