@@ -318,6 +318,15 @@ where
     M::On<f32x8>: Brdf<f32x8, 3>,
 {
     assert_eq!(runtime.properties(), direct.properties(), "{what}");
+    // The kinks the albedo integrator reads (Brdf::kinks), at a few views.
+    for q in p.iter().take(8) {
+        let wo = Vec3::new(f64::from(q.1.x), f64::from(q.1.y), f64::from(q.1.z));
+        assert_eq!(
+            runtime.kinks(wo),
+            direct.kinks(wo),
+            "{what}: kinks at {wo:?}"
+        );
+    }
     same_on::<f32, 3>(what, p, |wi, wo| {
         (runtime.eval(wi, wo), direct.eval(wi, wo))
     });

@@ -3,7 +3,7 @@
 use super::integrand::{Integrand, eval_f64};
 use super::quadrature::{MAX_PANELS, Quad, adaptive};
 use crate::math::f64m;
-use crate::models::{Brdf, Properties};
+use crate::models::{Brdf, Kinks, Properties};
 use crate::{Scalar, Vec3};
 use core::f64::consts::{FRAC_PI_4, PI};
 
@@ -11,18 +11,24 @@ use core::f64::consts::{FRAC_PI_4, PI};
 ///
 /// The integrator stops when its error estimate, summed over panels and taken as the
 /// maximum over channels, is at most `tolerance` (absolute, in albedo units), or when a
-/// panel budget is spent. The estimate is conservative for smooth integrands: the measured
-/// error of the default configuration is far below `tolerance` (see the module docs).
+/// panel budget is spent. For every model of the crate up to `θo = 89.99°` the estimate of
+/// [`DEFAULT`](Self::DEFAULT) bounds the actual error (measured against an independent
+/// reference; see the [module docs](super) for what it rests on and where it does not hold).
 ///
-/// Cost is at most `max_panels_theta · 15 · max_panels_phi · 15` BRDF evaluations
-/// (≈ 3.7 million at the limits); typical calls use 4.5·10³–1.2·10⁵.
+/// Cost is at most `(max_panels_theta + 6 + k_o) · 15 · (max_panels_phi + 12 + k_i) · 15` BRDF
+/// evaluations (the panel edges on kink curves come on top of the budgets, within the
+/// 128-panel storage; ≈ 3.7 million at the limits); typical calls use 5·10³–1.9·10⁵.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AlbedoConfig {
     /// Target absolute error of each channel's albedo (default `1e-6`).
     pub tolerance: f64,
-    /// Panel budget of the outer integral over `θm` (clamped to `1..=128`; default 64).
+    /// Panel budget of the outer integral over `θm` (clamped to `1..=128`; default 64), not
+    /// counting the up to 6 edges on kink curves and the `k_o ≤ 28` of the model's declared
+    /// kinks ([`Brdf::kinks`]).
     pub max_panels_theta: usize,
-    /// Panel budget of each inner integral over `φm` (clamped to `1..=128`; default 32).
+    /// Panel budget of each inner integral over `φm` (clamped to `1..=128`; default 32), not
+    /// counting the up to 12 edges on kink curves and the `k_i ≤ 20` of the model's declared
+    /// kinks.
     pub max_panels_phi: usize,
     /// Extra equal-width initial panels over the `θm` range (clamped to `1..=100`; default 1,
     /// i.e. only the special edges). Raise it, with [`min_panels_phi`](Self::min_panels_phi),
@@ -35,9 +41,10 @@ pub struct AlbedoConfig {
 }
 
 impl AlbedoConfig {
-    /// Default: `tolerance = 1e-6`, 64 × 32 panels. Meets `1e-4` with a wide margin on every
-    /// validated case (Lambert at grazing, Blinn-Phong up to s = 10⁴, GGX/Beckmann down to
-    /// α = 10⁻³).
+    /// Default: `tolerance = 1e-6`, 64 × 32 panels. Its error estimate bounds the error, and
+    /// both meet the tolerance, for every model of the crate up to `θo = 89.99°` (worst
+    /// measured error 3.0e-8) and on every validated lobe (Lambert at grazing, cosine lobes up
+    /// to n = 10⁴ down to `cos θo = 10⁻⁹`, GGX/Beckmann down to α = 10⁻³).
     pub const DEFAULT: Self = Self {
         tolerance: 1e-6,
         max_panels_theta: 64,
@@ -47,9 +54,11 @@ impl AlbedoConfig {
     };
 
     /// A cheaper setting for property tests: `tolerance = 1e-4`, 48 × 24 panels (measured
-    /// error ≤ 3.3e-6 on cosine lobes of exponent 1 to 10⁴ about the normal, mirror and retro
-    /// directions down to `cos θo = 10⁻⁹`, 4.7e-5 on GGX with α = 10⁻³; up to 45 % fewer
-    /// evaluations).
+    /// error ≤ 1.5e-5, and within the estimate, on cosine lobes of exponent 1 to 10⁴ about the
+    /// normal, mirror and retro directions down to `cos θo = 10⁻⁹`; 7.9e-8 on GGX and Beckmann
+    /// with α = 10⁻³ down to `cos θo = 10⁻⁴`). It saves little: up to 20 % of the evaluations
+    /// of `DEFAULT` on sharp GGX lobes and about none on the cosine-lobe scan, whose cost is
+    /// the initial and kink edges that both share.
     pub const FAST: Self = Self {
         tolerance: 1e-4,
         max_panels_theta: 48,
@@ -90,8 +99,11 @@ impl Default for AlbedoConfig {
 pub struct AlbedoEstimate<const N: usize> {
     /// The integral per channel.
     pub value: [f64; N],
-    /// Error estimate: absolute, maximum over channels (an upper bound in practice, not a
-    /// guarantee: a lobe narrower than the sampling that no node touches is invisible).
+    /// Error estimate: absolute, maximum over channels. An upper bound of the error for every
+    /// model of the crate up to `θo = 89.99°` (measured; kinks of their formulas sit on panel
+    /// edges), not a guarantee for any integrand: a lobe narrower than the sampling that no
+    /// node touches is invisible, and a kink inside a panel can be underestimated (see the
+    /// [module docs](super)).
     pub error: f64,
     /// Number of BRDF evaluations made.
     pub evaluations: u64,
@@ -173,26 +185,33 @@ where
 /// edges sit where lobes live: `θm = 0` (mirror direction, where the specular peak of every
 /// microfacet model is; plus graded edges at 10⁻⁴, 10⁻³, 10⁻², 10⁻¹), `θm = θo/2`
 /// (`wi = n`) and `θm = θo` (retro-reflection `wi = wo`), each with graded edges at
-/// ±10⁻², ±10⁻¹, `φm = φo` (plane of incidence), and at the kinks of `Δ(θm)`. Gauss–Kronrod nodes cluster at panel edges, so lobes centred on
-/// these directions are found at any sharpness; other lobes are found when some node sees
-/// them (width ≳ 0.03 rad with `DEFAULT`, ≳ 0.003 rad with `THOROUGH`), then refined
-/// adaptively.
+/// ±10⁻², ±10⁻¹, `φm = φo` (plane of incidence), and at the kinks of `Δ(θm)`. Gauss–Kronrod
+/// nodes cluster at panel edges, so lobes centred on these directions are found at any
+/// sharpness; other lobes are found when some node sees them (width ≳ 0.03 rad with
+/// `DEFAULT`, ≳ 0.003 rad with `THOROUGH`), then refined adaptively. Edges also sit on the
+/// kink curves of the crate's models (`cos θi = cos θo`, the V-cavity switches,
+/// `cos(φi − φo) = 0`, `R·wi = 0`, `wi·wo = 0`) — located in closed form on every `θm` line —
+/// and at the `θm` where they touch the plane of incidence, meet or reach the horizon (derived
+/// in the [module docs](super)).
 ///
 /// **Accuracy.** The error estimate of each panel — QUADPACK's heuristic
-/// `resasc · min(1, (200 |K15 − G7| / resasc)^1.5)`, `resasc = ∫|f − mean|`, plus propagated
-/// inner errors — is driven below `cfg.tolerance`. Measured against closed forms
-/// (tests/analysis.rs) with the default tolerance 1e-6: Lambert at `cos θo` down to 1e-7
-/// within 4.3e-10; normalized cosine lobes of exponent 1 to 10⁴ about the normal, mirror or
-/// retro direction at `cos θo` down to 1e-9 within 1.0e-7; Blinn-Phong up to s = 10⁴ and
-/// GGX/Beckmann down to α = 10⁻³ at normal incidence within 2e-11, and GGX/Beckmann with
-/// α = 10⁻³ at `cos θo` down to 1e-4 within 8.6e-10. Thin features away from those directions (cone lobes narrower than
-/// 0.03 rad, jump discontinuities) need [`AlbedoConfig::THOROUGH`] (see the
-/// [module docs](super)). Results are deterministic.
+/// `resasc · min(1, (200 |K15 − G7| / resasc)^1.5)`, `resasc = ∫|f − mean|`, floored at
+/// `|K15 − G7|`, plus propagated inner errors — is driven below `cfg.tolerance`. With
+/// [`AlbedoConfig::DEFAULT`] it bounds the actual error for every model of the crate up to
+/// `θo = 89.99°` (worst measured error 3.0e-8, against an independent kink-splitting
+/// reference), and for normalized cosine lobes of exponent 1 to 10⁴ about the normal, mirror
+/// or retro direction at `cos θo` down to 1e-9 (worst error 2.5e-9); Lambert at `cos θo` down
+/// to 1e-7 is within 2.2e-10, Blinn-Phong up to s = 10⁴ and GGX/Beckmann down to α = 10⁻³
+/// within 2e-11 at normal incidence and 8.6e-10 at `cos θo` down to 1e-4. Thin features away
+/// from those directions (cone lobes narrower than 0.03 rad, jump discontinuities) and kinks
+/// of your own closures away from the curves above are not covered; the first need
+/// [`AlbedoConfig::THOROUGH`] (see the [module docs](super)). Results are deterministic.
 ///
-/// **Cost.** 4.5·10³ (Lambert) to 1.2·10⁵ (sharp lobes off the mirror direction) BRDF
-/// evaluations, 0.2–5 ms in release for a cheap BRDF; bounded by
-/// `cfg.max_panels_theta · cfg.max_panels_phi · 225`. When the budget runs out, the returned
-/// `error` exceeds `tolerance`; check it.
+/// **Cost.** 5.4·10³ (normal view) to 1.9·10⁵ BRDF evaluations with `DEFAULT` (typically
+/// 5·10⁴ at grazing views); bounded by
+/// `(cfg.max_panels_theta + 6 + k_o) · (cfg.max_panels_phi + 12 + k_i) · 225` (`k_o ≤ 28`,
+/// `k_i ≤ 20` edges of the model's [`Brdf::kinks`]). When the budget runs
+/// out, the returned `error` exceeds `tolerance`; check it.
 ///
 /// References: B. Walter, S. R. Marschner, H. Li, K. E. Torrance, "Microfacet Models for
 /// Refraction through Rough Surfaces", EGSR 2007 (half-vector Jacobian); M. Pharr, W. Jakob,
@@ -237,7 +256,8 @@ where
     // Initial panel edges in θm: where lobes live, the kinks of Δ(θm), and where the kink
     // curves of `kink_cosines` touch the plane of incidence, meet each other or reach the
     // horizon (see `outer_kink_edges`).
-    let mut breaks = [0.0f64; 17 + OUTER_KINK_EDGES + 101];
+    let kinks = model_kinks(brdf.kinks(wo), wo, cos_phi_o, sin_phi_o);
+    let mut breaks = [0.0f64; 17 + OUTER_KINK_EDGES + MODEL_OUTER_EDGES + 101];
     let candidates = [
         0.0,
         1e-4,
@@ -262,9 +282,11 @@ where
     ];
     let mut n = 0;
     let mut kink_edges = 0;
+    let (model_outer, n_model_outer) = kinks.outer_edges(wo);
     for (i, &c) in candidates
         .iter()
         .chain(&outer_kink_edges(theta_o, cos_o))
+        .chain(&model_outer[..n_model_outer])
         .enumerate()
     {
         if (0.0..=theta_max).contains(&c) {
@@ -273,7 +295,8 @@ where
             kink_edges += usize::from(i >= candidates.len());
         }
     }
-    let extra = cfg.min_panels_theta.clamp(1, 100);
+    // Equal-width panels on top, as many as fit the panel storage.
+    let extra = cfg.min_panels_theta.clamp(1, 100).min(MAX_PANELS + 2 - n);
     for k in 1..extra {
         breaks[n] = theta_max * k as f64 / extra as f64;
         n += 1;
@@ -284,7 +307,7 @@ where
     let max_phi = cfg.max_panels_phi.clamp(1, MAX_PANELS);
     let per_side = cfg
         .min_panels_phi
-        .clamp(1, (MAX_PANELS - 2 * KINK_CURVES) / 2);
+        .clamp(1, (MAX_PANELS - 2 * KINK_CURVES - MODEL_INNER_EDGES) / 2);
     adaptive(
         |theta_m| {
             let (s_m, c_m) = (f64m::sin(theta_m), f64m::cos(theta_m));
@@ -305,7 +328,7 @@ where
             // Equal panels on each side of φo (at least two by default: a narrow sliver of a
             // feature cut by this θm line is then still seen by some node), plus edges where
             // the kink curves cross this θm line.
-            let mut inner = [0.0f64; 129 + 2 * KINK_CURVES];
+            let mut inner = [0.0f64; 129 + 2 * KINK_CURVES + MODEL_INNER_EDGES];
             let mut k = 0;
             for j in 0..=2 * per_side {
                 inner[k] = delta * (j as f64 - per_side as f64) / per_side as f64;
@@ -321,6 +344,7 @@ where
                     k += 2;
                 }
             }
+            k += kinks.inner_edges(cos_o, sin_o, c_m, s_m, delta, &mut inner[k..]);
             let kink_points = k - (2 * per_side + 1);
             let inner = sorted_distinct(&mut inner[..k]);
             adaptive(
@@ -466,6 +490,241 @@ fn outer_kink_edges(theta_o: f64, cos_o: f64) -> [f64; OUTER_KINK_EDGES] {
     ]
 }
 
+/// Most inner edges from a model's [`Kinks`] on one `θm` line (4 per plane, 1 per point).
+const MODEL_INNER_EDGES: usize = 4 * Kinks::MAX_PLANES + Kinks::MAX_POINTS;
+/// Most outer edges from a model's [`Kinks`] (6 per plane, 1 per point).
+const MODEL_OUTER_EDGES: usize = 6 * Kinks::MAX_PLANES + Kinks::MAX_POINTS;
+
+/// A model's declared kinks ([`Brdf::kinks`]) in the frame of the view: `x` along the
+/// azimuth of `wo`, so that `wo = (sin θo, 0, cos θo)` and `wm = (s cos φ', s sin φ', c)`.
+struct ModelKinks {
+    planes: [(Vec3<f64>, f64); Kinks::MAX_PLANES],
+    n_planes: usize,
+    /// Points of the closed upper hemisphere, as the `(θm, φ')` of their half vector.
+    points: [(f64, f64); Kinks::MAX_POINTS],
+    n_points: usize,
+}
+
+fn model_kinks(k: Kinks, wo: Vec3<f64>, cos_phi_o: f64, sin_phi_o: f64) -> ModelKinks {
+    let rot = |v: Vec3<f64>| {
+        Vec3::new(
+            v.x * cos_phi_o + v.y * sin_phi_o,
+            v.y * cos_phi_o - v.x * sin_phi_o,
+            v.z,
+        )
+    };
+    let mut m = ModelKinks {
+        planes: [(Vec3::new(0.0, 0.0, 0.0), 0.0); Kinks::MAX_PLANES],
+        n_planes: 0,
+        points: [(0.0, 0.0); Kinks::MAX_POINTS],
+        n_points: 0,
+    };
+    for &(d, level) in k.planes() {
+        m.planes[m.n_planes] = (rot(d), level);
+        m.n_planes += 1;
+    }
+    for &p in k.points() {
+        // On the horizon to rounding (a fibre tangent in the surface) counts as inside.
+        if p.z >= -1e-12 {
+            let h = rot(p).add(rot(wo));
+            let len = h.length();
+            if len > 0.0 {
+                let h = h.scale(1.0 / len);
+                let rho = f64m::sqrt(h.x * h.x + h.y * h.y);
+                let phi = super::angle(h.y.abs(), h.x);
+                m.points[m.n_points] = (super::angle(rho, h.z), if h.y < 0.0 { -phi } else { phi });
+                m.n_points += 1;
+            }
+        }
+    }
+    m
+}
+
+/// Zeros of `g` on `[a, b]` (at most `out.len()`): sign changes between `m + 1` samples, and
+/// pairs of close zeros about a sampled local minimum of `|g|` that the samples straddle
+/// without a sign change (the extremum located by golden section), each refined by
+/// bisection. Meant for the low-degree trigonometric polynomials of the kink geometry, which
+/// have few extrema.
+fn zeros(g: impl Fn(f64) -> f64, a: f64, b: f64, m: usize, out: &mut [f64]) -> usize {
+    let pos = |v: f64| v >= 0.0;
+    let bisect = |mut lo: f64, mut hi: f64| {
+        let s = pos(g(lo));
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if pos(g(mid)) == s {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    let x = |j: usize| a + (b - a) * j as f64 / m as f64;
+    let mut n = 0;
+    let mut push = |v: f64, n: &mut usize| {
+        if *n < out.len() {
+            out[*n] = v;
+            *n += 1;
+        }
+    };
+    let (mut g0, mut g1) = (f64::NAN, g(a));
+    for j in 0..m {
+        let g2 = g(x(j + 1));
+        if g1.is_finite() && g2.is_finite() {
+            if pos(g1) != pos(g2) {
+                push(bisect(x(j), x(j + 1)), &mut n);
+            }
+            // A local minimum of |g| at sample j with no sign change around it: a pair of
+            // zeros may hide between samples j − 1 and j + 1 if |g| there is at most about
+            // the change of g over a sample (near an extremum g ≈ g_j + κ (x − x_j)²).
+            if j > 0
+                && g0.is_finite()
+                && pos(g0) == pos(g1)
+                && pos(g1) == pos(g2)
+                && g1.abs() <= g0.abs()
+                && g1.abs() <= g2.abs()
+                && g1.abs() <= 4.0 * (g0 - g1).abs().max((g2 - g1).abs())
+            {
+                let s = if pos(g1) { 1.0 } else { -1.0 };
+                let (mut lo, mut hi) = (x(j - 1), x(j + 1));
+                let r = 0.618_033_988_749_894_8;
+                for _ in 0..60 {
+                    let (p, q) = (hi - r * (hi - lo), lo + r * (hi - lo));
+                    if s * g(p) < s * g(q) {
+                        hi = q;
+                    } else {
+                        lo = p;
+                    }
+                }
+                let xm = 0.5 * (lo + hi);
+                if pos(g(xm)) != pos(g1) {
+                    push(bisect(x(j - 1), xm), &mut n);
+                    push(bisect(xm, x(j + 1)), &mut n);
+                }
+            }
+        }
+        (g0, g1) = (g1, g2);
+    }
+    n
+}
+
+impl ModelKinks {
+    /// `θm` edges: where each plane's circle crosses the horizon and where it is tangent to a
+    /// `θm` line (an extremum of `cos θm` along the circle), above the horizon; and the `θm`
+    /// of each point.
+    ///
+    /// The circle is `wi(β) = level·d + r (cos β e₁ + sin β e₂)`, `r = √(1 − level²)`. Its
+    /// half vector has `cos θm = (wi.z + cos θo)/|wi + wo|`, `|wi + wo|² = 2 + 2 wi·wo`, whose
+    /// derivative along `β` has the sign of `F(β) = wi'.z (2 + 2 wi·wo) − (wi.z + cos θo)(wi'·wo)`.
+    fn outer_edges(&self, wo: Vec3<f64>) -> ([f64; MODEL_OUTER_EDGES], usize) {
+        let mut e = [0.0; MODEL_OUTER_EDGES];
+        let mut n = 0;
+        // In the view frame.
+        let sin_o = f64m::sqrt(wo.x * wo.x + wo.y * wo.y);
+        let wo = Vec3::new(sin_o, 0.0, wo.z);
+        let theta_m = |wi: Vec3<f64>| {
+            let h = wi.add(wo);
+            super::angle(f64m::sqrt(h.x * h.x + h.y * h.y), h.z)
+        };
+        for &(d, level) in &self.planes[..self.n_planes] {
+            let r = f64m::sqrt((1.0 - level) * (1.0 + level));
+            // e₁ ⊥ d: d × (the axis least aligned with d); e₂ = d × e₁.
+            let a = if d.x.abs() <= d.y.abs() && d.x.abs() <= d.z.abs() {
+                Vec3::new(1.0, 0.0, 0.0)
+            } else if d.y.abs() <= d.z.abs() {
+                Vec3::new(0.0, 1.0, 0.0)
+            } else {
+                Vec3::new(0.0, 0.0, 1.0)
+            };
+            let e1 = cross(d, a).normalize_or_zero();
+            let e2 = cross(d, e1);
+            let wi = |b: f64| {
+                let (sb, cb) = (f64m::sin(b), f64m::cos(b));
+                d.scale(level).add(e1.scale(r * cb)).add(e2.scale(r * sb))
+            };
+            let dwi = |b: f64| {
+                let (sb, cb) = (f64m::sin(b), f64m::cos(b));
+                e1.scale(-r * sb).add(e2.scale(r * cb))
+            };
+            // Horizon: level d.z + r (e₁.z cos β + e₂.z sin β) = 0.
+            let (ha, hb, hc) = (r * e1.z, r * e2.z, level * d.z);
+            let hr = f64m::sqrt(ha * ha + hb * hb);
+            if hr > hc.abs() {
+                let b0 = super::angle(hb.abs(), ha);
+                let b0 = if hb < 0.0 { -b0 } else { b0 };
+                let c = -hc / hr;
+                let db = super::angle(f64m::sqrt((1.0 - c) * (1.0 + c)), c);
+                for b in [b0 + db, b0 - db] {
+                    e[n] = theta_m(wi(b));
+                    n += 1;
+                }
+            }
+            // Tangency to θm lines.
+            let f = |b: f64| {
+                let (w, dw) = (wi(b), dwi(b));
+                dw.z * (2.0 + 2.0 * w.dot(wo)) - (w.z + wo.z) * dw.dot(wo)
+            };
+            let mut z = [0.0; 4];
+            let k = zeros(f, 0.0, 2.0 * PI, 64, &mut z);
+            for &b in &z[..k] {
+                let w = wi(b);
+                if w.z > 0.0 {
+                    e[n] = theta_m(w);
+                    n += 1;
+                }
+            }
+        }
+        for &(t, _) in &self.points[..self.n_points] {
+            e[n] = t;
+            n += 1;
+        }
+        (e, n)
+    }
+
+    /// Inner edges on the line `θm` (`c = cos θm`, `s = sin θm`) with `|φ'| < Δ`: the zeros of
+    /// `d·wi − level = 2u (d·wm) − d·wo − level`, `u = wo·wm`, for each plane, and each
+    /// point's `φ'`. Writes into `out`; returns the count.
+    fn inner_edges(
+        &self,
+        cos_o: f64,
+        sin_o: f64,
+        c: f64,
+        s: f64,
+        delta: f64,
+        out: &mut [f64],
+    ) -> usize {
+        let mut n = 0;
+        for &(d, level) in &self.planes[..self.n_planes] {
+            let d_wo = d.x * sin_o + d.z * cos_o;
+            let g = |x: f64| {
+                let (sx, cx) = (f64m::sin(x), f64m::cos(x));
+                let u = cos_o * c + sin_o * s * cx;
+                2.0 * u * (s * (d.x * cx + d.y * sx) + d.z * c) - d_wo - level
+            };
+            let end = n + 4;
+            n += zeros(g, -delta, delta, 32, &mut out[n..end]);
+        }
+        for &(_, phi) in &self.points[..self.n_points] {
+            if phi.abs() < delta {
+                out[n] = phi;
+                n += 1;
+            }
+        }
+        n
+    }
+}
+
+fn cross(a: Vec3<f64>, b: Vec3<f64>) -> Vec3<f64> {
+    Vec3::new(
+        a.y * b.z - a.z * b.y,
+        a.z * b.x - a.x * b.z,
+        a.x * b.y - a.y * b.x,
+    )
+}
+
 /// Accuracy and effort of [`hemispherical_albedo`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HemisphericalConfig {
@@ -605,6 +864,11 @@ impl<B: Brdf<f32, N>, const N: usize> Brdf<f64, N> for F32Brdf<B> {
     fn properties(&self) -> Properties {
         self.0.properties()
     }
+
+    #[inline]
+    fn kinks(&self, wo: Vec3<f64>) -> Kinks {
+        self.0.kinks(wo)
+    }
 }
 
 #[cfg(test)]
@@ -635,6 +899,90 @@ mod tests {
             rw,
             wi.dot(wo),
         ]
+    }
+
+    /// The half-width `Δ(θm)` of the domain on a θm line, by bisection on `wi.z`.
+    fn delta_of(theta_o: f64, theta_m: f64) -> f64 {
+        let z = |d: f64| wi_of(theta_o, theta_m, d.cos(), 1.0).0.z;
+        if z(0.0) <= 0.0 {
+            return 0.0;
+        }
+        if z(PI) > 0.0 {
+            return PI;
+        }
+        let (mut lo, mut hi) = (0.0, PI);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if z(mid) > 0.0 { lo = mid } else { hi = mid }
+        }
+        lo
+    }
+
+    /// A model's kink planes: the inner edges lie on the plane, none is missed (a dense sign
+    /// scan finds no more), and between consecutive outer edges every θm line crosses the
+    /// circle the same number of times (the outer edges are where that number changes).
+    #[test]
+    fn model_kink_planes_are_found_on_every_line_and_change_only_at_outer_edges() {
+        let planes = [
+            (Vec3::new(1.0, 0.0, 0.0), 0.0087),
+            (Vec3::new(1.0, 0.0, 0.0), -0.3),
+            (Vec3::new(0.3, -0.8, 0.5), 0.2),
+            (Vec3::new(0.0, 0.6, 0.8), -0.7),
+            (Vec3::new(-0.5, 0.1, -0.2), 0.1),
+        ];
+        let mut lines = 0;
+        for theta_o in [0.3f64, 1.0, 1.5, 1.5621, 1.5706] {
+            let (sin_o, cos_o) = theta_o.sin_cos();
+            let wo = Vec3::new(sin_o, 0.0, cos_o);
+            for &(d, level) in &planes {
+                let k = model_kinks(Kinks::NONE.with_plane(d, level), wo, 1.0, 0.0);
+                let (dn, lv) = k.planes[0];
+                let theta_max = FRAC_PI_4 + 0.5 * theta_o;
+                let (oe, n_oe) = k.outer_edges(wo);
+                let mut edges: Vec<f64> = oe[..n_oe].to_vec();
+                edges.extend([0.0, theta_max]);
+                edges.retain(|t| (0.0..=theta_max).contains(t));
+                edges.sort_by(f64::total_cmp);
+                for w in edges.windows(2) {
+                    let mut count = None;
+                    for j in 1..8 {
+                        let theta_m = w[0] + (w[1] - w[0]) * f64::from(j) / 8.0;
+                        let delta = delta_of(theta_o, theta_m);
+                        if delta <= 1e-9 || w[1] - w[0] < 1e-9 {
+                            continue;
+                        }
+                        let (s, c) = theta_m.sin_cos();
+                        let mut out = [0.0; MODEL_INNER_EDGES];
+                        let n = k.inner_edges(cos_o, sin_o, c, s, delta, &mut out);
+                        let g = |x: f64| {
+                            let wi = wi_of(theta_o, theta_m, x.cos(), x.signum()).0;
+                            dn.dot(wi) - lv
+                        };
+                        for &x in &out[..n] {
+                            assert!(g(x).abs() < 1e-9, "θo {theta_o} θm {theta_m}: {}", g(x));
+                        }
+                        // Dense scan: sign changes over 20000 steps.
+                        let mut dense = 0;
+                        let m = 20_000;
+                        let mut prev = g(-delta);
+                        for i in 1..=m {
+                            let v = g(-delta + 2.0 * delta * f64::from(i) / f64::from(m));
+                            if (v >= 0.0) != (prev >= 0.0) {
+                                dense += 1;
+                            }
+                            prev = v;
+                        }
+                        assert_eq!(n, dense, "θo {theta_o} θm {theta_m} plane {d:?}");
+                        if let Some(c) = count {
+                            assert_eq!(c, n, "θo {theta_o} θm {theta_m} in {w:?}");
+                        }
+                        count = Some(n);
+                        lines += 1;
+                    }
+                }
+            }
+        }
+        assert!(lines > 500, "{lines}");
     }
 
     #[test]

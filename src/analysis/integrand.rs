@@ -1,7 +1,7 @@
 //! What the analysis functions evaluate: a model of the crate, your own [`Brdf`], or a
 //! closure.
 
-use crate::models::Brdf;
+use crate::models::{Brdf, Kinks};
 use crate::{Scalar, Vec3};
 
 /// A BRDF as the analysis functions see it: `f(wi, wo)` per channel on `S = f32` or `f64`.
@@ -17,12 +17,24 @@ pub trait Integrand<S: Scalar, const N: usize> {
     /// `f(wi, wo)` per channel in sr⁻¹, without the cosine; `wi`, `wo` unit vectors in the
     /// local frame (z = normal), both in the upper hemisphere when the integrators call it.
     fn value(&self, wi: Vec3<S>, wo: Vec3<S>) -> [S; N];
+
+    /// Where `f(·, wo)` is not smooth (see [`Brdf::kinks`]); the albedo integrator puts panel
+    /// edges there. Models forward [`Brdf::kinks`]; closures ([`FnBrdf`]) declare none.
+    #[inline]
+    fn kinks(&self, _wo: Vec3<f64>) -> Kinks {
+        Kinks::NONE
+    }
 }
 
 impl<S: Scalar, const N: usize, B: Brdf<S, N> + ?Sized> Integrand<S, N> for B {
     #[inline]
     fn value(&self, wi: Vec3<S>, wo: Vec3<S>) -> [S; N] {
         self.eval(wi, wo)
+    }
+
+    #[inline]
+    fn kinks(&self, wo: Vec3<f64>) -> Kinks {
+        Brdf::kinks(self, wo)
     }
 }
 

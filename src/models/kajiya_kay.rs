@@ -1,9 +1,10 @@
 //! Kajiya-Kay's fibre (hair, fur) reflection model (1989).
 
 use super::{
-    Brdf, Energy, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
+    Brdf, Energy, Kinks, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
 };
 use crate::Scalar;
+use crate::math::f64m;
 use crate::real::{Splat, splat_array, splat_scalar};
 use crate::{Error, Real, Vec3};
 
@@ -173,6 +174,28 @@ impl<R: Real, const N: usize> Brdf<R, N> for KajiyaKay<R, N> {
         let r: [R; N] =
             crate::real::channels(|c| self.ks_c[c].mul_add(lobe, self.kd_over_pi[c] * si));
         masked(m, r)
+    }
+
+    /// The clamp `max(0, sᵢsₒ − cᵢcₒ)`, i.e. `cos(θᵢ + θₒ) = 0` with `θ` measured from `t`:
+    /// `sᵢsₒ = cᵢcₒ` needs `cᵢ` of the sign of `cₒ` and `(1 − cᵢ²) sₒ² = cᵢ² cₒ²`, so
+    /// `cᵢ = sign(cₒ) sₒ` — the plane `t·wi = sign(t·wo) sₒ` (none when `cₒ = 0`, where the
+    /// lobe `sᵢ` is never clamped). And `sᵢ = sin∠(wi, t)`, conical at the points `wi = ±t`.
+    #[inline]
+    fn kinks(&self, wo: Vec3<f64>) -> Kinks {
+        let t: Vec3<f64> = Vec3::new(
+            self.t.x.lane(0).into(),
+            self.t.y.lane(0).into(),
+            self.t.z.lane(0).into(),
+        );
+        let wo = wo.normalize_or_zero();
+        let co = t.dot(wo);
+        let so = f64m::sqrt(((1.0 - co) * (1.0 + co)).max(0.0));
+        let k = Kinks::NONE.with_point(t).with_point(t.scale(-1.0));
+        if co == 0.0 {
+            k
+        } else {
+            k.with_plane(t, if co > 0.0 { so } else { -so })
+        }
     }
 
     #[inline]

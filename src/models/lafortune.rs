@@ -1,7 +1,7 @@
 //! Lafortune's generalized cosine lobes (1997).
 
 use super::{
-    Brdf, Energy, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
+    Brdf, Energy, Kinks, Properties, Reciprocity, masked, safe_dirs, splat_channels, unit_channels,
 };
 use crate::Scalar;
 use crate::ndf::MAX_SHININESS;
@@ -206,6 +206,19 @@ impl<R: Real, const N: usize, const K: usize> Brdf<R, N> for Lafortune<R, N, K> 
             }
         }
         masked(m, r)
+    }
+
+    /// Each lobe's clamp `max(0, ·)`: the plane `(Cx wo.x, Cy wo.y, Cz wo.z)·wi = 0` (the first
+    /// [`Kinks::MAX_PLANES`] lobes).
+    #[inline]
+    fn kinks(&self, wo: Vec3<f64>) -> Kinks {
+        self.lobes.iter().fold(Kinks::NONE, |k, l| {
+            let c = |v: R| -> f64 { v.lane(0).into() };
+            k.with_plane(
+                Vec3::new(c(l.cx) * wo.x, c(l.cy) * wo.y, c(l.cz) * wo.z),
+                0.0,
+            )
+        })
     }
 
     #[inline]

@@ -107,6 +107,12 @@ impl<R: Real, const N: usize, A: Brdf<R, N>, B: Brdf<R, N>> Brdf<R, N> for Sum<A
         crate::real::channels(|c| a[c] + b[c])
     }
 
+    /// The union of both parts' kinks.
+    #[inline]
+    fn kinks(&self, wo: Vec3<f64>) -> super::Kinks {
+        self.a.kinks(wo).union(self.b.kinks(wo))
+    }
+
     #[inline]
     fn properties(&self) -> Properties {
         self.a
@@ -185,6 +191,13 @@ where
             ((R::one() - fi[c]) * (R::one() - fo[c])).mul_add(d[c], s[c])
         });
         masked(m, r)
+    }
+
+    /// The union of the base's and the coat's kinks (both are evaluated at `(wi, wo)`; the
+    /// Fresnel weights are smooth).
+    #[inline]
+    fn kinks(&self, wo: Vec3<f64>) -> super::Kinks {
+        self.base.kinks(wo).union(self.coat.kinks(wo))
     }
 
     #[inline]

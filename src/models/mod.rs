@@ -134,6 +134,120 @@ pub trait Brdf<R: Real, const N: usize> {
 
     /// The properties this model declares for its current parameters.
     fn properties(&self) -> Properties;
+
+    /// Where `f(wi, wo)`, at this `wo`, is not smooth as a function of `wi`, beyond the kink
+    /// curves the albedo integrator of [`analysis`](crate::analysis) knows by itself (those
+    /// fixed by the geometry: `cos θi = cos θo`, the V-cavity switches, `cos(φi − φo) = 0`,
+    /// `R·wi = 0`, `wi·wo = 0`). The integrator puts panel edges on these planes and points,
+    /// so that its error estimate stays honest (a kink inside a Gauss–Kronrod panel, above
+    /// all one near its end, can hide from the estimate).
+    ///
+    /// Default: none. Only [`analysis`](crate::analysis) reads it, in `f64` (on lane types,
+    /// lane 0 of the parameters); evaluation never does. [`KajiyaKay`] declares its clamp
+    /// plane and the two points `wi = ±t`; [`Sum`] and [`Layered`] the union of their parts.
+    #[inline]
+    fn kinks(&self, _wo: Vec3<f64>) -> Kinks {
+        Kinks::NONE
+    }
+}
+
+/// Where a BRDF at a fixed `wo` is not smooth in `wi`, for numerical integration (see
+/// [`Brdf::kinks`]): up to [`Kinks::MAX_PLANES`] planes `d·wi = level` (the kink is on their
+/// circle of intersection with the unit sphere, e.g. a `max(0, d·wi − level)`) and
+/// [`Kinks::MAX_POINTS`] directions `p` (a conical point such as `|wi − p|` or
+/// `sin∠(wi, p)`). Entries beyond the capacity, and non-finite or degenerate ones, are
+/// ignored.
+///
+/// # Examples
+///
+/// ```
+/// use brdf::models::Kinks;
+/// use brdf::Vec3;
+/// let k = Kinks::NONE.with_plane(Vec3::new(1.0, 0.0, 0.0), 0.25).with_point(Vec3::new(0.0, 1.0, 0.0));
+/// assert_eq!(k.planes().len(), 1);
+/// assert_eq!(k.points().len(), 1);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Kinks {
+    planes: [(Vec3<f64>, f64); Kinks::MAX_PLANES],
+    n_planes: usize,
+    points: [Vec3<f64>; Kinks::MAX_POINTS],
+    n_points: usize,
+}
+
+impl Kinks {
+    /// Capacity for planes.
+    pub const MAX_PLANES: usize = 4;
+    /// Capacity for points.
+    pub const MAX_POINTS: usize = 4;
+    /// No kinks.
+    pub const NONE: Self = Self {
+        planes: [(
+            Vec3 {
+                x: 0.0,
+                y: 0.0,
+                z: 0.0,
+            },
+            0.0,
+        ); Self::MAX_PLANES],
+        n_planes: 0,
+        points: [Vec3 {
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+        }; Self::MAX_POINTS],
+        n_points: 0,
+    };
+
+    /// Adds the plane `d·wi = level` (`d` is normalized here, `level` scaled with it); ignored
+    /// if `d` is zero or not finite, if `|level| ≥ |d|` after scaling (no circle), or at
+    /// capacity.
+    #[must_use]
+    pub fn with_plane(mut self, d: Vec3<f64>, level: f64) -> Self {
+        let len = d.length();
+        let (d, level) = (d.scale(1.0 / len), level / len);
+        if len > 0.0 && len.is_finite() && level.abs() < 1.0 && self.n_planes < Self::MAX_PLANES {
+            self.planes[self.n_planes] = (d, level);
+            self.n_planes += 1;
+        }
+        self
+    }
+
+    /// Adds the point `p` (normalized here); ignored if zero or not finite, or at capacity.
+    #[must_use]
+    pub fn with_point(mut self, p: Vec3<f64>) -> Self {
+        let len = p.length();
+        if len > 0.0 && len.is_finite() && self.n_points < Self::MAX_POINTS {
+            self.points[self.n_points] = p.scale(1.0 / len);
+            self.n_points += 1;
+        }
+        self
+    }
+
+    /// Both sets of kinks (what fits the capacity).
+    #[must_use]
+    pub fn union(self, other: Self) -> Self {
+        let mut k = self;
+        for &(d, level) in other.planes() {
+            k = k.with_plane(d, level);
+        }
+        for &p in other.points() {
+            k = k.with_point(p);
+        }
+        k
+    }
+
+    /// The planes `(d, level)`, `d` a unit vector, `|level| < 1`.
+    #[must_use]
+    pub fn planes(&self) -> &[(Vec3<f64>, f64)] {
+        &self.planes[..self.n_planes]
+    }
+
+    /// The points, unit vectors.
+    #[must_use]
+    pub fn points(&self) -> &[Vec3<f64>] {
+        &self.points[..self.n_points]
+    }
 }
 
 /// Lanes where both directions are strictly above the horizon.
