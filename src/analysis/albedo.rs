@@ -874,6 +874,7 @@ impl<B: Brdf<f32, N>, const N: usize> Brdf<f64, N> for F32Brdf<B> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::vec::Vec;
 
     /// `wi` of the half vector at `(θm, φ')` for `wo = (sin θo, 0, cos θo)`.
     fn wi_of(theta_o: f64, theta_m: f64, cos_phi: f64, sign: f64) -> (Vec3<f64>, Vec3<f64>) {

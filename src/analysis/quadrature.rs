@@ -247,6 +247,7 @@ pub(crate) fn adaptive<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::{println, vec::Vec};
 
     fn leaf(v: f64) -> Quad<1> {
         Quad {
