@@ -135,6 +135,7 @@ pub mod models;
 pub mod ndf;
 pub mod normalization;
 pub mod real;
+pub mod sampling;
 pub mod vec3;
 
 pub use glam;
@@ -144,6 +145,7 @@ pub use error::Error;
 pub use frame::Frame;
 pub use models::Brdf;
 pub use real::{Real, Scalar, f32x4, f32x8, f32x16, f64x4};
+pub use sampling::{Sample, SampleBrdf};
 pub use vec3::Vec3;
 
 /// The README's examples, compiled and run as doc tests.

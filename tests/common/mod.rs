@@ -213,3 +213,4 @@ fn ulps_counts_across_zero_and_precision() {
     assert_eq!(ulps(f32::from_bits(1), -f32::from_bits(1)), 2);
     assert_eq!(ulps(1.0f64, 1.0 + f64::EPSILON), 1);
 }
+pub mod chi2;
