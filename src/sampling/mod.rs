@@ -27,7 +27,7 @@
 //! Everything is generic over [`Real`]: one sample on `f32`/`f64`, one per lane on SIMD types,
 //! branch-free.
 //!
-//! References: E. Veach, *Robust Monte Carlo Methods for Light Transport Simulation*, PhD
+//! References: E. Veach, *Robust Monte Carlo Methods for Light Transport Simulation*, doctoral
 //! thesis, Stanford, 1997 (one-sample mixture densities, §9.2.4); M. Pharr, W. Jakob,
 //! G. Humphreys, *Physically Based Rendering*, 4th ed., 2023, §9.
 

@@ -93,34 +93,28 @@ fn gl_cell(f: &dyn Fn(f64, f64) -> f64, t0: f64, t1: f64, p0: f64, p1: f64) -> f
     s * th * ph
 }
 
-/// Adaptive 4 × 4 Gauss-Legendre: a cell is split in four until the split changes the
-/// result by less than `tol` (or `depth` runs out).
-fn adaptive(
-    f: &dyn Fn(f64, f64) -> f64,
-    t0: f64,
-    t1: f64,
-    p0: f64,
-    p1: f64,
-    whole: f64,
-    tol: f64,
-    depth: u32,
-) -> f64 {
+/// Adaptive 4 × 4 Gauss-Legendre over the cell `[t0, t1] × [p0, p1]`: a cell is split in four
+/// until the split changes the result (`whole`, the unsplit value) by less than `tol` (or
+/// `depth` runs out).
+fn adaptive(f: &dyn Fn(f64, f64) -> f64, cell: [f64; 4], whole: f64, tol: f64, depth: u32) -> f64 {
+    let [t0, t1, p0, p1] = cell;
     let (tm, pm) = (0.5 * (t0 + t1), 0.5 * (p0 + p1));
-    let parts = [
-        gl_cell(f, t0, tm, p0, pm),
-        gl_cell(f, tm, t1, p0, pm),
-        gl_cell(f, t0, tm, pm, p1),
-        gl_cell(f, tm, t1, pm, p1),
+    let quarters = [
+        [t0, tm, p0, pm],
+        [tm, t1, p0, pm],
+        [t0, tm, pm, p1],
+        [tm, t1, pm, p1],
     ];
+    let parts = quarters.map(|[a, b, c, d]| gl_cell(f, a, b, c, d));
     let sum: f64 = parts.iter().sum();
     if depth == 0 || (sum - whole).abs() <= tol {
         return sum;
     }
-    let t = 0.25 * tol;
-    adaptive(f, t0, tm, p0, pm, parts[0], t, depth - 1)
-        + adaptive(f, tm, t1, p0, pm, parts[1], t, depth - 1)
-        + adaptive(f, t0, tm, pm, p1, parts[2], t, depth - 1)
-        + adaptive(f, tm, t1, pm, p1, parts[3], t, depth - 1)
+    quarters
+        .iter()
+        .zip(parts)
+        .map(|(q, part)| adaptive(f, *q, part, 0.25 * tol, depth - 1))
+        .sum()
 }
 
 /// ∫ pdf over each (θ, φ) cell of the upper hemisphere, row-major in θ.
@@ -137,7 +131,7 @@ pub fn cell_integrals(pdf: &dyn Fn(Vec3<f64>) -> f64, cfg: &Chi2Config) -> Vec<f
         for j in 0..cfg.phi_bins {
             let (t0, p0) = (i as f64 * dt, j as f64 * dp);
             let whole = gl_cell(&f, t0, t0 + dt, p0, p0 + dp);
-            out.push(adaptive(&f, t0, t0 + dt, p0, p0 + dp, whole, 1e-10, 9));
+            out.push(adaptive(&f, [t0, t0 + dt, p0, p0 + dp], whole, 1e-10, 9));
         }
     }
     out
