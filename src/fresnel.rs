@@ -1068,8 +1068,14 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Schlick<R, N> {
 }
 
 /// The exact Fresnel reflectance of a smooth dielectric, the same (real) relative IOR for
-/// every channel: [`FresnelTerm`] is implemented for every channel count `N` and returns
+/// every channel: `Dielectric<R, N>` is a [`FresnelTerm<R, N>`] returning
 /// `[dielectric(|cos θd|, eta); N]` (an uncoloured coat or glass; dispersion is not modelled).
+///
+/// The channel count is part of the type, so a model built on it knows its channel count:
+/// the constructors make the one-channel term (`N = 1`, the default), and
+/// [`Dielectric::channels`] widens it (`Dielectric::new(1.5)?.channels::<3>()` beside an RGB
+/// diffuse). `CookTorrance::new(ggx, Dielectric::new(1.5)?, SmithSeparable).eval(wi, wo)`
+/// is then a `[R; 1]` without annotations.
 ///
 /// **Light arrives from the outside.** `eval` takes `|cos θd|` and keeps `eta`: unlike
 /// [`dielectric`], a negative cosine does **not** mean incidence from inside (no `1/eta`
@@ -1090,7 +1096,7 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Schlick<R, N> {
 /// assert_eq!(FresnelTerm::<f64, 1>::eval(&glass, -0.5), [dielectric(0.5, 1.5)]);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Dielectric<R> {
+pub struct Dielectric<R, const N: usize = 1> {
     consts: DielectricConsts<R>,
 }
 
@@ -1114,17 +1120,33 @@ impl<S: Scalar> Dielectric<S> {
     }
 }
 
-impl<R: Real> Dielectric<R> {
+impl<R: Real, const N: usize> Dielectric<R, N> {
     /// The relative IOR.
     pub fn eta(&self) -> R {
         self.consts.eta
     }
+
+    /// The same interface as an `M`-channel term (every channel the same reflectance; the
+    /// constants keep their bits).
+    ///
+    /// ```
+    /// use brdf::fresnel::{Dielectric, FresnelTerm};
+    /// let rgb = Dielectric::new(1.5_f32)?.channels::<3>();
+    /// assert_eq!(rgb.eval(1.0), [Dielectric::new(1.5_f32)?.eval(1.0)[0]; 3]);
+    /// # Ok::<(), brdf::Error>(())
+    /// ```
+    #[must_use]
+    pub fn channels<const M: usize>(self) -> Dielectric<R, M> {
+        Dielectric {
+            consts: self.consts,
+        }
+    }
 }
 
-impl<S: Scalar> Splat for Dielectric<S> {
-    type On<L: Real> = Dielectric<L>;
+impl<S: Scalar, const N: usize> Splat for Dielectric<S, N> {
+    type On<L: Real> = Dielectric<L, N>;
     #[inline]
-    fn splat<L: Real>(&self) -> Dielectric<L> {
+    fn splat<L: Real>(&self) -> Dielectric<L, N> {
         let k = &self.consts;
         Dielectric {
             consts: DielectricConsts {
@@ -1138,7 +1160,7 @@ impl<S: Scalar> Splat for Dielectric<S> {
     }
 }
 
-impl<R: Real, const N: usize> FresnelTerm<R, N> for Dielectric<R> {
+impl<R: Real, const N: usize> FresnelTerm<R, N> for Dielectric<R, N> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
         let c = cos_theta_d.abs().min(R::one());
@@ -1389,7 +1411,7 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for NoFresnel {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum AnyFresnel<R> {
     /// The exact [`Dielectric`] (the same IOR for every channel).
-    Dielectric(Dielectric<R>),
+    Dielectric(Dielectric<R, 3>),
     /// The exact [`Conductor`], a complex IOR per channel.
     Conductor(Conductor<R, 3>),
     /// [`Schlick`]'s approximation with `f0` (and `f90`) per channel.
@@ -1426,12 +1448,20 @@ macro_rules! any_fresnel_from {
     };
 }
 any_fresnel_from!(
-    Dielectric(Dielectric<R>),
+    Dielectric(Dielectric<R, 3>),
     Conductor(Conductor<R, 3>),
     Schlick(Schlick<R, 3>),
     F82Tint(F82Tint<R, 3>),
     NoFresnel(NoFresnel)
 );
+
+impl<R> From<Dielectric<R>> for AnyFresnel<R> {
+    /// The one-channel term as the three-channel one ([`Dielectric::channels`]).
+    #[inline]
+    fn from(f: Dielectric<R>) -> Self {
+        AnyFresnel::Dielectric(Dielectric { consts: f.consts })
+    }
+}
 
 impl<S: Scalar> Splat for AnyFresnel<S> {
     type On<L: Real> = AnyFresnel<L>;

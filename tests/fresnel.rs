@@ -577,7 +577,7 @@ fn fresnel_terms_match_free_functions() {
     let s = Schlick::<f64, 3>::with_f90([0.04, 0.5, 0.9], [1.0, 0.8, 0.5]).unwrap();
     let c = Conductor::<f64, 3>::new([0.2, 0.5, 1.4], [3.5, 2.5, 1.9]).unwrap();
     let f = F82Tint::<f64, 3>::new([0.9, 0.6, 0.3], [0.8, 0.9, 1.0]).unwrap();
-    let d = Dielectric::<f64>::new(1.5).unwrap();
+    let d = Dielectric::<f64>::new(1.5).unwrap().channels::<3>();
     for cos in [0.0, 1e-7, 0.3, 0.7, 1.0] {
         let (es, ec, ef) = (s.eval(cos), c.eval(cos), f.eval(cos));
         let ed: [f64; 3] = d.eval(cos);
@@ -1036,4 +1036,25 @@ fn huge_ior_dielectric_is_finite_and_rejected_by_constructors() {
         format!("{}", Dielectric::new(1e300_f64).unwrap_err()),
         "parameter `eta` = 1e300 is outside its domain [1e-4, 1e4]"
     );
+}
+
+/// The channel count of a Cook-Torrance model on a dielectric follows from the term: no
+/// annotation is needed to evaluate it (this was E0284 when `Dielectric` implemented
+/// `FresnelTerm` for every `N`), and widening keeps every bit.
+#[test]
+fn a_dielectric_model_infers_its_channel_count() {
+    use brdf::masking::SmithSeparable;
+    use brdf::models::{Brdf, CookTorrance};
+    use brdf::ndf::Ggx;
+    let w = brdf::Vec3::new(0.0, 0.6, 0.8);
+    let ggx = Ggx::new(0.3).unwrap();
+    let one = CookTorrance::new(ggx, Dielectric::new(1.5).unwrap(), SmithSeparable).eval(w, w);
+    let rgb = CookTorrance::new(
+        ggx,
+        Dielectric::new(1.5).unwrap().channels::<3>(),
+        SmithSeparable,
+    )
+    .eval(w, w);
+    assert!(one[0] > 0.0 && one[0].is_finite());
+    assert_eq!(rgb, [one[0]; 3]);
 }

@@ -265,8 +265,8 @@ proptest! {
         ndf_forwards("Beckmann", beckmann(), &p);
         ndf_forwards("Beckmann isotropic", beckmann_iso(), &p);
 
-        fresnel_forwards("Dielectric", Dielectric::new(1.5).unwrap(), &p);
-        fresnel_forwards("Dielectric η < 1", Dielectric::new(0.7).unwrap(), &p);
+        fresnel_forwards("Dielectric", Dielectric::new(1.5).unwrap().channels(), &p);
+        fresnel_forwards("Dielectric η < 1", Dielectric::new(0.7).unwrap().channels(), &p);
         fresnel_forwards("Conductor", gold(), &p);
         fresnel_forwards("Schlick", Schlick::new([0.04, 0.5, 0.9]).unwrap(), &p);
         fresnel_forwards("F82Tint", F82Tint::from_preset(ior::Preset::Chromium).unwrap(), &p);
@@ -470,7 +470,7 @@ fn cook_torrance_models(p: &Pairs) {
     every_masking!("Beckmann isotropic conductor", beckmann_iso(), gold());
 
     let (iso, aniso) = (ggx_iso(), ggx());
-    let dielectric = Dielectric::new(1.5).unwrap();
+    let dielectric = Dielectric::new(1.5).unwrap().channels();
     let schlick = Schlick::new([0.04, 0.5, 0.9]).unwrap();
     let f82 = F82Tint::from_preset(ior::Preset::Chromium).unwrap();
     for_each_ndf_fresnel(p, iso, dielectric, schlick, f82);
@@ -482,7 +482,7 @@ fn cook_torrance_models(p: &Pairs) {
 fn for_each_ndf_fresnel<N>(
     p: &Pairs,
     ndf: N,
-    dielectric: Dielectric<f32>,
+    dielectric: Dielectric<f32, 3>,
     schlick: Schlick<f32, 3>,
     f82: F82Tint<f32, 3>,
 ) where
@@ -505,7 +505,7 @@ fn compositions(p: &Pairs) {
     let oren = OrenNayar::new([0.3; 3], 0.5).unwrap();
     let coat = CookTorrance::new(
         GgxIsotropic::new(0.1).unwrap(),
-        Dielectric::new(1.5).unwrap(),
+        Dielectric::new(1.5).unwrap().channels(),
         SmithHeightCorrelated,
     );
     let any_coat = || {
@@ -527,7 +527,7 @@ fn compositions(p: &Pairs) {
     let one = Material::Sum(vec![oren.into()]);
     same_model("sum of 1", &one, &oren, p);
 
-    let fresnel = Dielectric::new(1.5).unwrap();
+    let fresnel = Dielectric::new(1.5).unwrap().channels::<3>();
     let layered = Material::Layered(Box::new(Layered::new(
         lambert.into(),
         any_coat(),

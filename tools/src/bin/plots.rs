@@ -629,7 +629,7 @@ fn white_models() -> Vec<(&'static str, Vec<(String, Model)>)> {
                     boxed(Ggx::<f64>::new(0.5).and_then(|d| {
                         Ok(CookTorrance::new(
                             d,
-                            Dielectric::<f64>::new(1.5)?,
+                            Dielectric::<f64>::new(1.5)?.channels(),
                             SmithHeightCorrelated,
                         ))
                     })),
@@ -799,7 +799,7 @@ fn lobe_models() -> Vec<(String, Model)> {
             boxed(Ggx::<f64>::new(0.2).and_then(|d| {
                 Ok(CookTorrance::new(
                     d,
-                    Dielectric::<f64>::new(1.5)?,
+                    Dielectric::<f64>::new(1.5)?.channels(),
                     SmithHeightCorrelated,
                 ))
             })),
@@ -809,7 +809,7 @@ fn lobe_models() -> Vec<(String, Model)> {
             boxed(Beckmann::<f64>::new(0.2).and_then(|d| {
                 Ok(CookTorrance::new(
                     d,
-                    Dielectric::<f64>::new(1.5)?,
+                    Dielectric::<f64>::new(1.5)?.channels(),
                     SmithHeightCorrelated,
                 ))
             })),

@@ -204,7 +204,11 @@ fn presets(ctx: Ctx) -> Spec {
             ctx.iso(ndf.and_then(|d| {
                 Ok(Sum::new(
                     ShirleyDiffuse::<f32, 3>::new(base, f0)?,
-                    CookTorrance::new(d, Dielectric::<f32>::new(eta[1])?, SmithHeightCorrelated),
+                    CookTorrance::new(
+                        d,
+                        Dielectric::<f32>::new(eta[1])?.channels(),
+                        SmithHeightCorrelated,
+                    ),
                 ))
             }))
         };
