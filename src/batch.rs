@@ -35,6 +35,7 @@
 use core::marker::PhantomData;
 
 use crate::real::{F32Fma, Splat};
+use crate::sampling::SampleBrdf;
 use crate::{Real, Vec3, models::Brdf};
 
 /// Unit directions in the local frame as structure of arrays: `(x[i], y[i], z[i])` is one
@@ -536,4 +537,199 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
             *o = core::array::from_fn(|c| res[c][i]);
         }
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Batch sampling
+// ---------------------------------------------------------------------------------------------
+
+/// What [`sample`] needs of a model: [`BatchBrdf`] whose `f32` and [`F32Fma`] forms both
+/// sample ([`SampleBrdf`]). Implemented for every model of this crate that samples.
+pub trait BatchSample<const N: usize>: BatchBrdf<N> + SampleBrdf<f32, N>
+where
+    Self::Fused: SampleBrdf<F32Fma, N>,
+{
+}
+
+impl<B, const N: usize> BatchSample<N> for B
+where
+    B: BatchBrdf<N> + SampleBrdf<f32, N>,
+    B::Fused: SampleBrdf<F32Fma, N>,
+{
+}
+
+/// Output slices of a batch [`sample`]: the drawn directions (structure of arrays), their densities and the
+/// weights per channel. Every slice has the length of the input.
+#[derive(Debug)]
+pub struct SampleOut<'a, const N: usize> {
+    /// `wi.x` of each sample.
+    pub x: &'a mut [f32],
+    /// `wi.y` of each sample.
+    pub y: &'a mut [f32],
+    /// `wi.z` of each sample (`cos θi`).
+    pub z: &'a mut [f32],
+    /// The density per unit solid angle (`0`: invalid sample).
+    pub pdf: &'a mut [f32],
+    /// `f·cos θi / pdf` per channel (`0` on invalid samples).
+    pub weight: [&'a mut [f32]; N],
+}
+
+/// A batch sampling loop, compiled once per instruction set.
+trait SampleLoop<const N: usize> {
+    fn run(&self, wo: Directions<'_>, u: [&[f32]; 3], out: &mut SampleOut<'_, N>);
+}
+
+/// One [`SampleBrdf::sample`] on the one-lane type `K` per iteration.
+struct PerSample<'a, K, B>(&'a B, PhantomData<K>);
+
+impl<K, B, const N: usize> SampleLoop<N> for PerSample<'_, K, B>
+where
+    K: Real<Scalar = f32, Mask = bool>,
+    B: SampleBrdf<K, N>,
+{
+    #[inline(always)]
+    fn run(&self, wo: Directions<'_>, u: [&[f32]; 3], out: &mut SampleOut<'_, N>) {
+        let n = wo.len();
+        let (ox, oy, oz) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
+        let (u0, u1, u2) = (&u[0][..n], &u[1][..n], &u[2][..n]);
+        let (x, y, z, pdf) = (
+            &mut out.x[..n],
+            &mut out.y[..n],
+            &mut out.z[..n],
+            &mut out.pdf[..n],
+        );
+        let mut weight = out.weight.each_mut().map(|c| &mut c[..n]);
+        for i in 0..n {
+            let s = self.0.sample(
+                Vec3::new(K::splat(ox[i]), K::splat(oy[i]), K::splat(oz[i])),
+                [K::splat(u0[i]), K::splat(u1[i]), K::splat(u2[i])],
+            );
+            x[i] = s.wi.x.lane(0);
+            y[i] = s.wi.y.lane(0);
+            z[i] = s.wi.z.lane(0);
+            pdf[i] = s.pdf.lane(0);
+            for (o, w) in weight.iter_mut().zip(&s.weight) {
+                o[i] = w.lane(0);
+            }
+        }
+    }
+}
+
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[target_feature(enable = "avx2,fma")]
+fn sample_kernel_avx2<L: SampleLoop<N>, const N: usize>(
+    l: &L,
+    wo: Directions<'_>,
+    u: [&[f32]; 3],
+    out: &mut SampleOut<'_, N>,
+) {
+    l.run(wo, u, out)
+}
+
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
+fn sample_kernel_avx512<L: SampleLoop<N>, const N: usize>(
+    l: &L,
+    wo: Directions<'_>,
+    u: [&[f32]; 3],
+    out: &mut SampleOut<'_, N>,
+) {
+    l.run(wo, u, out)
+}
+
+/// Draws one `wi` per `wo[i]` from the uniform numbers `(u[0][i], u[1][i], u[2][i])` with a
+/// chosen instruction set ([`SampleBrdf::sample`] per element; see the
+/// [sampling conventions](crate::sampling)), writing the direction, its density and its
+/// weight to `out`.
+///
+/// [`Isa::Portable`] results equal [`SampleBrdf::sample`] on `brdf` bit for bit; the FMA
+/// variants equal `sample` on [`BatchBrdf::fused`] bit for bit, as for [`eval_with`].
+///
+/// # Errors
+///
+/// [`Unavailable`] if the CPU lacks `isa`.
+///
+/// # Panics
+///
+/// If `wo`, the three `u` slices and the output slices differ in length.
+#[inline]
+pub fn sample_with<B, const N: usize>(
+    isa: Isa,
+    brdf: &B,
+    wo: Directions<'_>,
+    u: [&[f32]; 3],
+    out: &mut SampleOut<'_, N>,
+) -> Result<(), Unavailable>
+where
+    B: BatchSample<N>,
+    B::Fused: SampleBrdf<F32Fma, N>,
+{
+    let n = wo.len();
+    assert!(
+        u.iter().all(|s| s.len() == n),
+        "batch: u and wo differ in length"
+    );
+    assert!(
+        out.x.len() == n
+            && out.y.len() == n
+            && out.z.len() == n
+            && out.pdf.len() == n
+            && out.weight.iter().all(|c| c.len() == n),
+        "batch: output and input differ in length"
+    );
+    if !isa.is_available() {
+        return Err(Unavailable(isa));
+    }
+    let fused = brdf.fused();
+    let fused = PerSample::<F32Fma, B::Fused>(&fused, PhantomData);
+    match isa {
+        Isa::Portable => PerSample::<f32, B>(brdf, PhantomData).run(wo, u, out),
+        // SAFETY: `is_available` checked at run time that the CPU has these features.
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        Isa::Avx2Fma => unsafe { sample_kernel_avx2(&fused, wo, u, out) },
+        // SAFETY: as above.
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        Isa::Avx512 => unsafe { sample_kernel_avx512(&fused, wo, u, out) },
+        #[cfg(not(all(feature = "std", target_arch = "x86_64")))]
+        _ => {
+            let _ = fused;
+            unreachable!("only Portable is available here")
+        }
+    }
+    Ok(())
+}
+
+/// [`sample_with`] on the widest instruction set this CPU has ([`Isa::detect`]).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::batch::{Directions, SampleOut, sample};
+/// use brdf::models::Lambert;
+///
+/// let m = Lambert::new([0.5_f32]).unwrap();
+/// let (zero, one) = ([0.0f32; 64], [1.0f32; 64]);
+/// let u: Vec<f32> = (0..64).map(|i| i as f32 / 64.0).collect();
+/// let (mut x, mut y, mut z, mut pdf, mut w) = ([0.0; 64], [0.0; 64], [0.0; 64], [0.0; 64], [0.0; 64]);
+/// let mut out = SampleOut { x: &mut x, y: &mut y, z: &mut z, pdf: &mut pdf, weight: [&mut w] };
+/// sample(&m, Directions::new(&zero, &zero, &one), [&u, &u, &u], &mut out);
+/// // Cosine sampling of Lambert: the weight is the albedo (`u0 = 0` draws the normal).
+/// assert!(w.iter().all(|&w| (w - 0.5).abs() < 1e-6));
+/// ```
+///
+/// # Panics
+///
+/// As [`sample_with`].
+#[inline]
+pub fn sample<B, const N: usize>(
+    brdf: &B,
+    wo: Directions<'_>,
+    u: [&[f32]; 3],
+    out: &mut SampleOut<'_, N>,
+) where
+    B: BatchSample<N>,
+    B::Fused: SampleBrdf<F32Fma, N>,
+{
+    // The detected variant is available by construction.
+    let _ = sample_with(Isa::detect(), brdf, wo, u, out);
 }

@@ -1,0 +1,96 @@
+//! Batch sampling throughput (`batch::sample_with`), 64K samples, f32, one core, on every
+//! instruction set this CPU has: samples per second per sampler, so their ratio is measured
+//! on the machine at hand (name the CPU beside any figure: `lscpu`).
+use std::hint::black_box;
+
+use brdf::SampleBrdf;
+use brdf::batch::{self, Directions, Isa, SampleOut};
+use brdf::models::{Lambert, OrenNayar};
+use brdf::real::F32Fma;
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+
+const N: usize = 1 << 16;
+
+/// Deterministic uniforms in [0, 1) (xorshift).
+fn uniforms(seed: u32) -> Vec<f32> {
+    let mut s = seed;
+    (0..N)
+        .map(|_| {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            (s >> 8) as f32 / (1u32 << 24) as f32
+        })
+        .collect()
+}
+
+/// `wo` on the upper hemisphere, cos θo uniform in (0, 1].
+fn view_directions() -> [Vec<f32>; 3] {
+    let (a, b) = (uniforms(11), uniforms(12));
+    let mut d: [Vec<f32>; 3] = Default::default();
+    for (c, p) in a.iter().zip(&b) {
+        let c = 1.0 - c;
+        let r = (1.0 - c * c).max(0.0).sqrt();
+        let phi = p * core::f32::consts::TAU;
+        d[0].push(r * phi.cos());
+        d[1].push(r * phi.sin());
+        d[2].push(c);
+    }
+    d
+}
+
+/// Benchmarks `model` under `name` on every available instruction set.
+pub fn bench_sampler<B, const C: usize>(c: &mut Criterion, group: &str, name: &str, model: &B)
+where
+    B: batch::BatchSample<C>,
+    B::Fused: SampleBrdf<F32Fma, C>,
+{
+    let wo = view_directions();
+    let u = [uniforms(1), uniforms(2), uniforms(3)];
+    let mut g = c.benchmark_group(group);
+    g.throughput(Throughput::Elements(N as u64));
+    for isa in Isa::ALL.into_iter().filter(|i| i.is_available()) {
+        let (mut x, mut y, mut z, mut pdf) =
+            (vec![0.0; N], vec![0.0; N], vec![0.0; N], vec![0.0; N]);
+        let mut w: [Vec<f32>; C] = core::array::from_fn(|_| vec![0.0; N]);
+        g.bench_function(BenchmarkId::new(name, format!("{isa:?}")), |b| {
+            b.iter(|| {
+                let mut out = SampleOut {
+                    x: &mut x,
+                    y: &mut y,
+                    z: &mut z,
+                    pdf: &mut pdf,
+                    weight: w.each_mut().map(|c| c.as_mut_slice()),
+                };
+                batch::sample_with(
+                    isa,
+                    black_box(model),
+                    Directions::new(&wo[0], &wo[1], &wo[2]),
+                    [&u[0], &u[1], &u[2]],
+                    &mut out,
+                )
+                .unwrap();
+                black_box(&pdf);
+            })
+        });
+    }
+    g.finish();
+}
+
+fn diffuse(c: &mut Criterion) {
+    bench_sampler(
+        c,
+        "sample_diffuse",
+        "lambert",
+        &Lambert::new([0.5_f32]).unwrap(),
+    );
+    bench_sampler(
+        c,
+        "sample_diffuse",
+        "oren_nayar",
+        &OrenNayar::new([0.5_f32], 0.5).unwrap(),
+    );
+}
+
+criterion_group!(benches, diffuse);
+criterion_main!(benches);
