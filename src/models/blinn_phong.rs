@@ -738,3 +738,187 @@ where
         nbp_passes(self, |_, _| [K::zero(); N], wi, wo, out);
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Importance sampling
+// ---------------------------------------------------------------------------------------------
+
+use crate::sampling::lobes::{
+    HalfLobe, PhongHalf, first_probability, mean, pdf_diffuse_and_half, reflect, reflected_pdf,
+    sample_diffuse_and_half,
+};
+use crate::sampling::{Sample, SampleBrdf};
+
+/// The estimate `8π R_s c F̄/(s + 2)` of a Blinn-Phong lobe's albedo `∫ R_s c F (wm.z)^s dωi`
+/// at normal incidence (`dωi = 4 (wo·wm) dωm`, `∫ cos^(s+1) θm dωm = 2π/(s + 2)`), with the
+/// channel mean of `F(F0, cos θo)` standing in for `F(F0, wo·wm)`.
+#[inline(always)]
+fn lobe_estimate<R: Real, const N: usize>(rs_c: R, f0: &[R; N], s: R, wo: Vec3<R>) -> R {
+    let f = mean(schlick_channels(f0, wo.z.saturate()));
+    R::from_f64(8.0 * core::f64::consts::PI) * rs_c * f / (s + R::from_f64(2.0))
+}
+
+/// Importance sampling of the engine Blinn-Phong: a one-sample mixture (Veach 1997, §9.2.4)
+/// of cosine sampling for `R_d` and the half-vector lobe `p(wm) = (s + 1)/(2π) (wm.z)^s`
+/// reflected about `wm` (Ashikhmin & Shirley 2000, §5, with `nu = nv = s`), so
+///
+/// ```text
+/// pdf(wi) = P_d cos θi/π + (1 − P_d) (s + 1)/(2π) (wm.z)^s / (4 wo·wm)
+/// P_d = ρ̂_d/(ρ̂_d + ρ̂_s),   ρ̂_d = π mean(R_d),   ρ̂_s = 8π R_s mean(F(F0, cos θo))/(s + 2)
+/// ```
+///
+/// `u[2] < P_d` chooses the diffuse lobe. `weight = f cos θi / pdf` with the whole `f`.
+/// [`SampleBrdf::albedo_estimate`] is `ρ̂_d + ρ̂_s`.
+impl<R: Real, const N: usize, S: SqrtFn> SampleBrdf<R, N> for BlinnPhongClassic<R, N, S> {
+    #[inline(always)]
+    fn sample(&self, wo: Vec3<R>, u: [R; 3]) -> Sample<R, N> {
+        let (pd, lobe) = self.mixture(wo);
+        sample_diffuse_and_half(&lobe, pd, wo, u, |wi| self.eval(wi, wo))
+    }
+
+    #[inline(always)]
+    fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R {
+        let (pd, lobe) = self.mixture(wo);
+        pdf_diffuse_and_half(&lobe, pd, wo, wi)
+    }
+
+    #[inline(always)]
+    fn albedo_estimate(&self, wo: Vec3<R>) -> R {
+        let (d, s) = self.estimates(wo);
+        d + s
+    }
+}
+
+impl<R: Real, const N: usize, S: SqrtFn> BlinnPhongClassic<R, N, S> {
+    /// `(ρ̂_d, ρ̂_s)` (see the [`SampleBrdf`] impl).
+    #[inline(always)]
+    fn estimates(&self, wo: Vec3<R>) -> (R, R) {
+        (
+            R::pi() * mean(self.rd),
+            lobe_estimate(self.rs, &self.f0, self.shininess, wo),
+        )
+    }
+
+    /// `(P_d, half-vector lobe)`.
+    #[inline(always)]
+    fn mixture(&self, wo: Vec3<R>) -> (R, PhongHalf<R>) {
+        let (d, s) = self.estimates(wo);
+        let lobe = PhongHalf {
+            nu: self.shininess,
+            nv: self.shininess,
+        };
+        (first_probability(d, s), lobe)
+    }
+}
+
+impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn>
+    NormalizedBlinnPhongSpecular<R, N, V, P>
+{
+    /// The half-vector lobe `(s + 1)/(2π) (wm.z)^s`.
+    #[inline(always)]
+    fn half_lobe(&self) -> PhongHalf<R> {
+        let s = self.half_shininess + self.half_shininess;
+        PhongHalf { nu: s, nv: s }
+    }
+
+    /// `ρ̂_s = 8π R_s c(s) mean(F(F0, cos θo))/(s + 2)` (≈ `R_s F̄` for the tri-Ace factors).
+    #[inline(always)]
+    fn estimate(&self, wo: Vec3<R>) -> R {
+        let s = self.half_shininess + self.half_shininess;
+        lobe_estimate(self.rs_c, &self.f0, s, wo)
+    }
+}
+
+/// Importance sampling of the normalized Blinn-Phong lobe: the half vector from
+/// `p(wm) = (s + 1)/(2π) (wm.z)^s` (Ashikhmin & Shirley 2000, §5, `nu = nv = s`), `wo`
+/// reflected about it:
+///
+/// ```text
+/// pdf(wi) = (s + 1)/(2π) (wm.z)^s / (4 wo·wm),     wm = (wi + wo)/|wi + wo|
+/// weight  = R_s c(s) F(F0, wo·wm) · (cos θi / V) · 8π (wo·wm)/(s + 1)
+/// ```
+///
+/// The weight is that closed form (the powers cancel), not a quotient of two tiny numbers.
+/// A drawn `wm` with `wo·wm ≤ 0`, or a reflection below the horizon, is an invalid sample.
+/// `u[2]` is unused. [`SampleBrdf::albedo_estimate`] is `8π R_s c(s) mean(F(F0, cos θo))/(s + 2)`.
+impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> SampleBrdf<R, N>
+    for NormalizedBlinnPhongSpecular<R, N, V, P>
+{
+    #[inline(always)]
+    fn sample(&self, wo: Vec3<R>, u: [R; 3]) -> Sample<R, N> {
+        let lobe = self.half_lobe();
+        let (wi, ok) = reflect(wo, lobe.draw(u[0], u[1]));
+        let pdf = reflected_pdf(&lobe, wo, wi);
+        let f = self.eval(wi, wo);
+        let (_, k) = self.lobe_parts(wi, wo);
+        let (_, cos_d) = half_and_cos_d::<ExactSqrt, R>(wi, wo);
+        let s = self.half_shininess + self.half_shininess;
+        let g = R::from_f64(8.0 * core::f64::consts::PI) * cos_d * wi.z / (s + R::one());
+        let weight = crate::real::channels(|c| k[c] * g);
+        Sample::new(wi, pdf, f, weight, ok & wo.z.gt(R::zero()))
+    }
+
+    #[inline(always)]
+    fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R {
+        reflected_pdf(&self.half_lobe(), wo, wi)
+    }
+
+    #[inline(always)]
+    fn albedo_estimate(&self, wo: Vec3<R>) -> R {
+        self.estimate(wo)
+    }
+}
+
+/// Importance sampling of the seed's normalized Blinn-Phong: a one-sample mixture (Veach
+/// 1997, §9.2.4) of cosine sampling for the [`CoupledLambert`] diffuse and the specular's
+/// half-vector lobe ([`NormalizedBlinnPhongSpecular`]'s sampler):
+///
+/// ```text
+/// pdf(wi) = P_d cos θi/π + (1 − P_d) (s + 1)/(2π) (wm.z)^s / (4 wo·wm)
+/// P_d = ρ̂_d/(ρ̂_d + ρ̂_s),   ρ̂_d = R_d (1 − R_s mean(F0)),   ρ̂_s = 8π R_s c(s) mean(F(F0, cos θo))/(s + 2)
+/// ```
+///
+/// `u[2] < P_d` chooses the diffuse lobe; `weight = f cos θi / pdf` with the whole `f`.
+/// [`SampleBrdf::albedo_estimate`] is `ρ̂_d + ρ̂_s`.
+impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> SampleBrdf<R, N>
+    for NormalizedBlinnPhong<R, N, V, P>
+{
+    #[inline(always)]
+    fn sample(&self, wo: Vec3<R>, u: [R; 3]) -> Sample<R, N> {
+        let pd = self.diffuse_probability(wo);
+        sample_diffuse_and_half(&self.specular.half_lobe(), pd, wo, u, |wi| {
+            self.eval(wi, wo)
+        })
+    }
+
+    #[inline(always)]
+    fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R {
+        let pd = self.diffuse_probability(wo);
+        pdf_diffuse_and_half(&self.specular.half_lobe(), pd, wo, wi)
+    }
+
+    #[inline(always)]
+    fn albedo_estimate(&self, wo: Vec3<R>) -> R {
+        self.diffuse.estimate() + self.specular.estimate(wo)
+    }
+}
+
+impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> NormalizedBlinnPhong<R, N, V, P> {
+    /// `P_d = ρ̂_d/(ρ̂_d + ρ̂_s)`.
+    #[inline(always)]
+    fn diffuse_probability(&self, wo: Vec3<R>) -> R {
+        first_probability(self.diffuse.estimate(), self.specular.estimate(wo))
+    }
+}
+
+impl<R: Real, const N: usize> CoupledLambert<R, N> {
+    /// `R_d (1 − R_s F0)` averaged over the channels: the albedo at normal incidence (and an
+    /// upper bound at every angle).
+    #[inline(always)]
+    pub(crate) fn estimate(&self) -> R {
+        R::pi()
+            * mean(crate::real::channels::<R, N>(|c| {
+                self.base[c] + self.weight[c]
+            }))
+    }
+}

@@ -6,6 +6,8 @@ use super::{
 use crate::Scalar;
 use crate::math::f64m;
 use crate::real::{Splat, splat_array, splat_scalar};
+use crate::sampling::SampleBrdf;
+use crate::sampling::lobes::mean;
 use crate::{Error, Real, Vec3};
 
 /// `ln Γ(x)` for `x > 0` (Stirling series after shifting `x ≥ 10`; ~1e-15 relative).
@@ -215,5 +217,29 @@ impl<R: Real, const N: usize> Brdf<R, N> for KajiyaKay<R, N> {
                 }
             },
         }
+    }
+}
+
+/// Importance sampling of Kajiya-Kay: **cosine-weighted** (`pdf = cos θi/π`,
+/// `weight = π f`), the documented choice. The specular term's mirror set is a cone about the
+/// fibre tangent, not a lobe about one direction, so no simple lobe sampler matches it;
+/// the cosine covers the whole hemisphere (unbiased for every `p`), is exact for the diffuse
+/// term up to its `sin(t, wi)` factor, and costs one warp. For sharp highlights (large `p`)
+/// the variance grows with `p`: combine with light sampling by MIS. `u[2]` is unused.
+/// [`SampleBrdf::albedo_estimate`] is `mean(kd) + mean(ks c(p))`.
+impl<R: Real, const N: usize> SampleBrdf<R, N> for KajiyaKay<R, N> {
+    #[inline(always)]
+    fn sample(&self, wo: Vec3<R>, u: [R; 3]) -> crate::sampling::Sample<R, N> {
+        crate::sampling::sample_cosine(self, wo, u)
+    }
+
+    #[inline(always)]
+    fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R {
+        crate::sampling::pdf_cosine(wo, wi)
+    }
+
+    #[inline(always)]
+    fn albedo_estimate(&self, _wo: Vec3<R>) -> R {
+        R::pi() * mean(self.kd_over_pi) + mean(self.ks_c)
     }
 }

@@ -3,6 +3,8 @@
 use super::{Brdf, Energy, Properties, Reciprocity, masked, safe_dirs};
 use crate::fresnel::FresnelTerm;
 use crate::real::Splat;
+use crate::sampling::lobes::{first_probability, mean, pdf_pair, sample_pair};
+use crate::sampling::{Sample, SampleBrdf};
 use crate::{Real, Vec3};
 
 /// The sum of two models, `f = A + B` (e.g. a diffuse and a specular lobe), composed at
@@ -205,5 +207,120 @@ where
         self.base
             .properties()
             .combine(self.coat.properties(), LAYERED_CONDITION)
+    }
+}
+
+/// Importance sampling of a sum: a one-sample mixture of the parts' own samplers (Veach
+/// 1997, §9.2.4). Part `a` is chosen with probability `P = ρ̂_a/(ρ̂_a + ρ̂_b)` (their
+/// [`SampleBrdf::albedo_estimate`]s at `wo`; `1/2` if both are 0) when `u[2] < P`, and gets
+/// `u[2]/P` as its own third number (`b` gets `(u[2] − P)/(1 − P)`), so nested sums and
+/// mixtures inside a part still receive a uniform number:
+///
+/// ```text
+/// pdf(wi)   = P pdf_a(wi) + (1 − P) pdf_b(wi)
+/// weight    = (f_a + f_b)(wi) cos θi / pdf(wi)        (the whole f, not the part's weight)
+/// ρ̂         = ρ̂_a + ρ̂_b
+/// ```
+impl<R, const N: usize, A, B> SampleBrdf<R, N> for Sum<A, B>
+where
+    R: Real,
+    A: SampleBrdf<R, N>,
+    B: SampleBrdf<R, N>,
+{
+    #[inline(always)]
+    fn sample(&self, wo: Vec3<R>, u: [R; 3]) -> Sample<R, N> {
+        let p = first_probability(self.a.albedo_estimate(wo), self.b.albedo_estimate(wo));
+        sample_pair(
+            p,
+            wo,
+            u,
+            |u| self.a.sample(wo, u),
+            |u| self.b.sample(wo, u),
+            |wi| self.a.pdf(wo, wi),
+            |wi| self.b.pdf(wo, wi),
+            |wi| self.eval(wi, wo),
+        )
+    }
+
+    #[inline(always)]
+    fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R {
+        let p = first_probability(self.a.albedo_estimate(wo), self.b.albedo_estimate(wo));
+        pdf_pair(p, wo, wi, |wi| self.a.pdf(wo, wi), |wi| self.b.pdf(wo, wi))
+    }
+
+    #[inline(always)]
+    fn albedo_estimate(&self, wo: Vec3<R>) -> R {
+        self.a.albedo_estimate(wo) + self.b.albedo_estimate(wo)
+    }
+}
+
+impl<D, S, F> Layered<D, S, F> {
+    /// `(ρ̂_coat, (1 − mean F(cos θo)) ρ̂_base)`.
+    #[inline(always)]
+    fn estimates<R: Real, const N: usize>(&self, wo: Vec3<R>) -> (R, R)
+    where
+        D: SampleBrdf<R, N>,
+        S: SampleBrdf<R, N>,
+        F: FresnelTerm<R, N>,
+    {
+        let fo = mean(self.fresnel.eval(wo.z.saturate()));
+        (
+            self.coat.albedo_estimate(wo),
+            (R::one() - fo).max(R::zero()) * self.base.albedo_estimate(wo),
+        )
+    }
+}
+
+/// Importance sampling of a coat over a base: a one-sample mixture (Veach 1997, §9.2.4) of
+/// the coat's and the base's own samplers, chosen and remapped with `u[2]` as in [`Sum`]'s,
+/// with the coat's probability
+///
+/// ```text
+/// P = ρ̂_S / (ρ̂_S + (1 − mean F(cos θo)) ρ̂_D)
+/// pdf(wi) = P pdf_S(wi) + (1 − P) pdf_D(wi)
+/// weight  = f(wi) cos θi / pdf(wi)    with f = S + (1 − F(cos θi))(1 − F(cos θo)) D
+/// ```
+///
+/// (`ρ̂` the parts' [`SampleBrdf::albedo_estimate`]s; the base's is weighted by the coat's
+/// transmission towards `wo`). [`SampleBrdf::albedo_estimate`] is
+/// `ρ̂_S + (1 − mean F(cos θo)) ρ̂_D`.
+impl<R, const N: usize, D, S, F> SampleBrdf<R, N> for Layered<D, S, F>
+where
+    R: Real,
+    D: SampleBrdf<R, N>,
+    S: SampleBrdf<R, N>,
+    F: FresnelTerm<R, N>,
+{
+    #[inline(always)]
+    fn sample(&self, wo: Vec3<R>, u: [R; 3]) -> Sample<R, N> {
+        let (s, d) = self.estimates(wo);
+        sample_pair(
+            first_probability(s, d),
+            wo,
+            u,
+            |u| self.coat.sample(wo, u),
+            |u| self.base.sample(wo, u),
+            |wi| self.coat.pdf(wo, wi),
+            |wi| self.base.pdf(wo, wi),
+            |wi| self.eval(wi, wo),
+        )
+    }
+
+    #[inline(always)]
+    fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R {
+        let (s, d) = self.estimates(wo);
+        pdf_pair(
+            first_probability(s, d),
+            wo,
+            wi,
+            |wi| self.coat.pdf(wo, wi),
+            |wi| self.base.pdf(wo, wi),
+        )
+    }
+
+    #[inline(always)]
+    fn albedo_estimate(&self, wo: Vec3<R>) -> R {
+        let (s, d) = self.estimates(wo);
+        s + d
     }
 }

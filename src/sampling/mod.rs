@@ -31,6 +31,8 @@
 //! thesis, Stanford, 1997 (one-sample mixture densities, §9.2.4); M. Pharr, W. Jakob,
 //! G. Humphreys, *Physically Based Rendering*, 4th ed., 2023, §9.
 
+pub(crate) mod lobes;
+
 use crate::models::{Brdf, masked};
 use crate::{Real, Vec3};
 use core::fmt;
@@ -92,6 +94,22 @@ pub trait SampleBrdf<R: Real, const N: usize>: Brdf<R, N> {
     /// The density (per unit solid angle) with which [`sample`](SampleBrdf::sample) draws `wi`
     /// given `wo`; `0` if either is below the horizon.
     fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R;
+
+    /// A cheap estimate of the directional albedo `ρ(wo) = ∫ f(wi, wo) cos θi dωi` (mean over
+    /// the channels), with which the mixtures ([`Sum`](crate::models::Sum),
+    /// [`Layered`](crate::models::Layered), the runtime `Sum` of
+    /// [`Material`](crate::material::Material)) choose a part: part `a` is drawn with
+    /// probability `ρ̂_a/(ρ̂_a + ρ̂_b)`. Only ratios matter, and any finite value `≥ 0` keeps the
+    /// mixture unbiased as long as it is `> 0` wherever the model is not zero; a good estimate
+    /// only lowers the variance.
+    ///
+    /// Default: `1`. The lobe models return their reflectance parameters (each model's
+    /// documentation says which); the cosine-sampled diffuse models keep the default.
+    #[inline(always)]
+    fn albedo_estimate(&self, wo: Vec3<R>) -> R {
+        let _ = wo;
+        R::one()
+    }
 }
 
 /// Cosine-weighted hemisphere density `max(0, cos θ) / π` of the warp
