@@ -331,7 +331,7 @@ impl<R: Real, const N: usize, const K: usize> SampleBrdf<R, N> for Lafortune<R, 
         for (l, &p) in lobes.iter().zip(&pj) {
             let w = sample_cos_power(l.axis, l.e, u[0], u[1]);
             wi = select_vec(u[2].ge(acc) & p.gt(R::zero()), w, wi);
-            acc = acc + p;
+            acc += p;
         }
         let pdf = Self::mixture_pdf(&lobes, pd, &pj, wo, wi);
         finish(wi, pdf, self.eval(wi, wo), wo.z.gt(R::zero()))
