@@ -71,3 +71,11 @@ impl<R: Real, const N: usize> Brdf<R, N> for Lambert<R, N> {
         }
     }
 }
+
+impl<R: Real, const N: usize> Lambert<R, N> {
+    /// The albedo's channel mean (its sampling's albedo estimate).
+    #[inline(always)]
+    pub(crate) fn estimate(&self) -> R {
+        R::pi() * crate::sampling::lobes::mean(self.albedo_over_pi)
+    }
+}

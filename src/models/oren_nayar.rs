@@ -194,3 +194,19 @@ impl<R: Real, const N: usize> Brdf<R, N> for OrenNayarFujii<R, N> {
         }
     }
 }
+
+impl<R: Real, const N: usize> OrenNayar<R, N> {
+    /// `ρA`, the channel mean (its sampling's albedo estimate; the `B` term adds little).
+    #[inline(always)]
+    pub(crate) fn estimate(&self) -> R {
+        R::pi() * crate::sampling::lobes::mean(self.a)
+    }
+}
+
+impl<R: Real, const N: usize> OrenNayarFujii<R, N> {
+    /// `ρA`, the channel mean (its sampling's albedo estimate).
+    #[inline(always)]
+    pub(crate) fn estimate(&self) -> R {
+        R::pi() * crate::sampling::lobes::mean(self.a)
+    }
+}

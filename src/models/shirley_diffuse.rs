@@ -99,3 +99,11 @@ impl<R: Real, const N: usize> Brdf<R, N> for ShirleyDiffuse<R, N> {
         }
     }
 }
+
+impl<R: Real, const N: usize> ShirleyDiffuse<R, N> {
+    /// `(1 − R0) ρd`, the channel mean (its sampling's albedo estimate).
+    #[inline(always)]
+    pub(crate) fn estimate(&self) -> R {
+        R::from_f64(20.0 * core::f64::consts::PI / 21.0) * crate::sampling::lobes::mean(self.k)
+    }
+}

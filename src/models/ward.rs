@@ -230,7 +230,7 @@ impl<R: Real, const N: usize, K: WardNormalization> Ward<R, N, K> {
 
 /// Importance sampling of Ward's model: a one-sample mixture (Veach 1997, §9.2.4) of cosine
 /// sampling for `ρd` and Walter's half-vector sampling of the Gaussian lobe ("Notes on the
-/// Ward BRDF", Cornell PCG-2005-3), `wo` reflected about the drawn `wm`:
+/// Ward BRDF", Cornell PCG-05-06, 2005), `wo` reflected about the drawn `wm`:
 ///
 /// ```text
 /// φm: tan φm = (αy/αx) tan(2π u1)  (same quadrant; computed as the direction of (αx cos 2πu1, αy sin 2πu1), no atan)

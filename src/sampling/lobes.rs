@@ -93,7 +93,7 @@ pub(crate) trait HalfLobe<R: Real> {
     fn density(&self, wm: Vec3<R>) -> R;
 }
 
-/// Ashikhmin and Shirley's anisotropic Phong half-vector lobe (JGT 5(2), 2000, §5, eq. 9–10):
+/// Ashikhmin and Shirley's anisotropic Phong half-vector lobe (JGT 5(2), 2000, §5):
 ///
 /// ```text
 /// p_h(wm) = √((nu + 1)(nv + 1))/(2π) · cos^e θm,    e = nu cos²φm + nv sin²φm
@@ -137,7 +137,7 @@ impl<R: Real> HalfLobe<R> for PhongHalf<R> {
 }
 
 /// Ward's elliptical Gaussian half-vector lobe as Walter samples it ("Notes on the Ward BRDF",
-/// Cornell PCG-2005-3, eq. 6–9):
+/// Cornell PCG-05-06, 2005, §3):
 ///
 /// ```text
 /// p_h(wm) = exp(−tan²θm (cos²φm/αx² + sin²φm/αy²)) / (π αx αy cos³θm)

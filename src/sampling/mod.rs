@@ -103,8 +103,10 @@ pub trait SampleBrdf<R: Real, const N: usize>: Brdf<R, N> {
     /// mixture unbiased as long as it is `> 0` wherever the model is not zero; a good estimate
     /// only lowers the variance.
     ///
-    /// Default: `1`. The lobe models return their reflectance parameters (each model's
-    /// documentation says which); the cosine-sampled diffuse models keep the default.
+    /// Default: `1`. The crate's models return their reflectance parameters (each model's
+    /// sampling documentation says which; the diffuse models the channel mean of their albedo
+    /// at normal incidence: `ρ` for `Lambert`, `ρA` for the Oren-Nayar models, `(1 − R0) ρd`
+    /// for `ShirleyDiffuse`, `R_d (1 − R_s F0)` for `CoupledLambert`).
     #[inline(always)]
     fn albedo_estimate(&self, wo: Vec3<R>) -> R {
         let _ = wo;
@@ -145,6 +147,8 @@ pub fn pdf_cosine<R: Real>(wo: Vec3<R>, wi: Vec3<R>) -> R {
 }
 
 /// Implements [`SampleBrdf`] by cosine-weighted sampling for diffuse models.
+/// [`SampleBrdf::albedo_estimate`] is each model's `pub(crate) fn estimate` (the mean of its
+/// albedo parameter, see there).
 macro_rules! cosine_sampled {
     ($($model:ident),*) => {$(
         impl<R: Real, const N: usize> SampleBrdf<R, N> for crate::models::$model<R, N> {
@@ -155,6 +159,10 @@ macro_rules! cosine_sampled {
             #[inline(always)]
             fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R {
                 pdf_cosine(wo, wi)
+            }
+            #[inline(always)]
+            fn albedo_estimate(&self, _wo: Vec3<R>) -> R {
+                self.estimate()
             }
         }
     )*};
