@@ -341,7 +341,7 @@ fn material_chi2() {
         Material::Layered(Box::new(Layered::new(
             OrenNayar::new([0.3; 3], 0.5).unwrap().into(),
             nbp::<f64>(false).into(),
-            Dielectric::new(1.5).unwrap().into(),
+            Dielectric::new(1.5).unwrap().channels::<3>().into(),
         ))),
     ]);
     at_all_angles("material sum of 3 with a layer", &sum, 25.0, true);
@@ -642,7 +642,7 @@ fn material_sampling_is_the_static_models_bit_for_bit() {
     same_sampling("sum of 3", &sum3, &nested_sum::<f32>(true));
     same_sampling("sum of 1", &Material::Sum(vec![on.into()]), &on);
     let coat = nbp::<f32>(false);
-    let fresnel = Dielectric::new(1.5f32).unwrap();
+    let fresnel = Dielectric::new(1.5f32).unwrap().channels::<3>();
     let layered = Material::Layered(Box::new(Layered::new(
         lam.into(),
         coat.into(),
