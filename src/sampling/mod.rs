@@ -32,6 +32,11 @@
 //! G. Humphreys, *Physically Based Rendering*, 4th ed., 2023, §9.
 
 pub(crate) mod lobes;
+mod microfacet;
+pub use microfacet::{
+    Auto, BoundedVisibleNormals, FullDistribution, NormalSampler, SampleNdf, Sampled,
+    SphericalCaps, VisibleNormals, erf_inv,
+};
 
 use crate::models::{Brdf, masked};
 use crate::{Real, Vec3};

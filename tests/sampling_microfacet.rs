@@ -1,0 +1,626 @@
+//! Importance sampling of the microfacet models: χ² goodness of fit of every normal-sampling
+//! strategy (GGX: visible normals, spherical caps, bounded visible normals, full
+//! distribution; Beckmann: visible normals, full distribution; Blinn-Phong and
+//! Ashikhmin-Shirley: `D cos θm`) reflected through a Cook-Torrance model, the pdf's
+//! integral, the closed-form weights against `f·cos θi / pdf`, the inverse error function,
+//! finite results at the extremes, lanes against scalars, and the rejection rates of plain
+//! and bounded VNDF sampling.
+mod common;
+
+use brdf::fresnel::Schlick;
+use brdf::masking::{SmithHeightCorrelated, VCavity};
+use brdf::models::CookTorrance;
+use brdf::ndf::{AnyNdf, AshikhminShirley, Beckmann, BlinnPhong, Ggx, GgxIsotropic, erf};
+use brdf::sampling::{
+    BoundedVisibleNormals, FullDistribution, NormalSampler, SampleNdf, SphericalCaps,
+    VisibleNormals, erf_inv,
+};
+use brdf::{Real, SampleBrdf, Vec3};
+use common::chi2::{Chi2Config, Rng, chi2, sidak};
+
+/// Number of χ² configurations in this file (the Šidák correction divides the 1 % level
+/// among them). Keep it ≥ the count of `check_chi2` calls.
+const TESTS: usize = 64;
+
+fn wo_at(theta_deg: f64, phi_deg: f64) -> Vec3<f64> {
+    let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
+    Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
+}
+
+/// χ² of `model`'s sampler at `wo` on `cfg`'s histogram, plus: ∫pdf = 1 − invalid fraction
+/// (within 4σ of the binomial estimate, and ≤ 1 + 1e-4), `sample().pdf == pdf()` to 1e-6
+/// relative and `weight == f cos θi / pdf` to 1e-5 relative on every sample. Returns the
+/// invalid fraction.
+fn check_chi2_cfg<const N: usize, M: SampleBrdf<f64, N>>(
+    name: &str,
+    model: &M,
+    wo: Vec3<f64>,
+    cfg: &Chi2Config,
+) -> f64 {
+    let mut worst_pdf: f64 = 0.0;
+    let mut worst_weight: f64 = 0.0;
+    let out = chi2(
+        &mut |u| {
+            let s = model.sample(wo, u);
+            if !s.valid {
+                assert_eq!(s.pdf, 0.0, "{name}: invalid sample with pdf");
+                assert!(
+                    s.weight.iter().all(|w| *w == 0.0),
+                    "{name}: invalid sample with weight"
+                );
+                return None;
+            }
+            let p = model.pdf(wo, s.wi);
+            worst_pdf = worst_pdf.max((s.pdf - p).abs() / p);
+            let f = model.eval(s.wi, wo);
+            for c in 0..N {
+                assert_eq!(s.f[c], f[c], "{name}: sample's f differs from eval");
+                let w = f[c] * s.wi.z / s.pdf;
+                let rel = (s.weight[c] - w).abs() / w.abs().max(1e-300);
+                if w != 0.0 {
+                    worst_weight = worst_weight.max(rel);
+                }
+                assert!(s.weight[c].is_finite(), "{name}: weight {:?}", s.weight);
+            }
+            Some(s.wi)
+        },
+        &|wi| model.pdf(wo, wi),
+        cfg,
+    )
+    .unwrap_or_else(|e| panic!("{name} at {wo:?}: {e}"));
+    let level = sidak(0.01, TESTS);
+    assert!(
+        out.p_value > level,
+        "{name} at {wo:?}: χ² rejected, p = {:e} < {level:e} ({out:?})",
+        out.p_value
+    );
+    let valid = 1.0 - out.invalid_fraction;
+    let sigma = (valid * (1.0 - valid) / cfg.samples as f64).sqrt();
+    assert!(
+        out.integral <= 1.0 + 1e-4,
+        "{name}: ∫pdf = {}",
+        out.integral
+    );
+    assert!(
+        (out.integral - valid).abs() <= 4.0 * sigma + 1e-4,
+        "{name} at {wo:?}: ∫pdf = {} but {valid} of the samples are valid",
+        out.integral
+    );
+    assert!(
+        worst_pdf <= 1e-6,
+        "{name}: sample().pdf vs pdf(): {worst_pdf:e}"
+    );
+    assert!(
+        worst_weight <= 1e-5,
+        "{name}: weight vs f cos/pdf: {worst_weight:e}"
+    );
+    out.invalid_fraction
+}
+
+/// The histogram for a lobe of width `alpha`: 16 × 32 cells, or 64 θ bins for narrow lobes
+/// (so the peak spreads over several rows).
+fn cfg_for(alpha: f64) -> Chi2Config {
+    Chi2Config {
+        theta_bins: if alpha < 0.1 { 64 } else { 16 },
+        ..Chi2Config::DEFAULT
+    }
+}
+
+fn check_chi2<const N: usize, M: SampleBrdf<f64, N>>(
+    name: &str,
+    model: &M,
+    wo: Vec3<f64>,
+    alpha: f64,
+) -> f64 {
+    check_chi2_cfg(name, model, wo, &cfg_for(alpha))
+}
+
+fn schlick() -> Schlick<f64, 1> {
+    Schlick::new([0.04]).unwrap()
+}
+
+type Ct<D, G> = CookTorrance<f64, D, Schlick<f64, 1>, G>;
+
+fn ggx_iso(alpha: f64) -> Ct<GgxIsotropic<f64>, SmithHeightCorrelated> {
+    CookTorrance::new(
+        GgxIsotropic::new(alpha).unwrap(),
+        schlick(),
+        SmithHeightCorrelated,
+    )
+}
+
+fn ggx(ax: f64, ay: f64) -> Ct<Ggx<f64>, SmithHeightCorrelated> {
+    CookTorrance::new(
+        Ggx::anisotropic(ax, ay).unwrap(),
+        schlick(),
+        SmithHeightCorrelated,
+    )
+}
+
+fn beckmann(alpha: f64) -> Ct<Beckmann<f64>, SmithHeightCorrelated> {
+    CookTorrance::new(
+        Beckmann::new(alpha).unwrap(),
+        schlick(),
+        SmithHeightCorrelated,
+    )
+}
+
+// --- χ²: 10⁶ samples per configuration --------------------------------------------------------
+
+#[test]
+fn ggx_default_spherical_caps_chi2() {
+    // α ∈ {0.05, 0.2, 0.5, 1} × θo ∈ {0°, 45°, 80°, 89°}, split so tests run in parallel.
+    for (alpha, theta) in [
+        (0.05, 0.0),
+        (0.05, 45.0),
+        (0.2, 80.0),
+        (0.5, 89.0),
+        (1.0, 0.0),
+    ] {
+        check_chi2("ggx caps", &ggx_iso(alpha), wo_at(theta, 0.0), alpha);
+    }
+}
+
+#[test]
+fn ggx_default_spherical_caps_chi2_grazing() {
+    for (alpha, theta) in [
+        (0.05, 89.0),
+        (0.2, 0.0),
+        (0.5, 45.0),
+        (1.0, 80.0),
+        (1.0, 89.0),
+    ] {
+        check_chi2("ggx caps", &ggx_iso(alpha), wo_at(theta, 0.0), alpha);
+    }
+}
+
+#[test]
+fn ggx_heitz_vndf_chi2() {
+    for (alpha, theta) in [(0.05, 80.0), (0.2, 45.0), (0.5, 0.0), (1.0, 89.0)] {
+        let m = ggx_iso(alpha).sampled_with::<VisibleNormals>();
+        check_chi2("ggx vndf", &m, wo_at(theta, 0.0), alpha);
+    }
+}
+
+#[test]
+fn ggx_bounded_vndf_chi2() {
+    for (alpha, theta) in [
+        (0.05, 45.0),
+        (0.2, 89.0),
+        (0.5, 80.0),
+        (1.0, 0.0),
+        (1.0, 45.0),
+    ] {
+        let m = ggx_iso(alpha).sampled_with::<BoundedVisibleNormals>();
+        check_chi2("ggx bounded", &m, wo_at(theta, 0.0), alpha);
+    }
+}
+
+#[test]
+fn ggx_full_distribution_chi2() {
+    for (alpha, theta) in [(0.05, 0.0), (0.2, 80.0), (1.0, 45.0)] {
+        let m = ggx_iso(alpha).sampled_with::<FullDistribution>();
+        check_chi2("ggx full", &m, wo_at(theta, 0.0), alpha);
+    }
+}
+
+#[test]
+fn anisotropic_ggx_every_strategy_chi2() {
+    let m = ggx(0.1, 0.5);
+    let wo = wo_at(60.0, 30.0);
+    check_chi2("aniso ggx caps", &m, wo, 0.1);
+    check_chi2(
+        "aniso ggx vndf",
+        &m.sampled_with::<VisibleNormals>(),
+        wo,
+        0.1,
+    );
+    check_chi2(
+        "aniso ggx bounded",
+        &m.sampled_with::<BoundedVisibleNormals>(),
+        wo_at(80.0, 120.0),
+        0.1,
+    );
+    check_chi2(
+        "aniso ggx full",
+        &m.sampled_with::<FullDistribution>(),
+        wo,
+        0.1,
+    );
+}
+
+#[test]
+fn beckmann_vndf_chi2() {
+    for (alpha, theta) in [(0.05, 45.0), (0.2, 0.0), (0.5, 89.0), (1.0, 80.0)] {
+        check_chi2("beckmann vndf", &beckmann(alpha), wo_at(theta, 0.0), alpha);
+    }
+}
+
+#[test]
+fn beckmann_vndf_chi2_more() {
+    for (alpha, theta) in [(0.05, 89.0), (0.2, 80.0), (0.5, 0.0), (1.0, 45.0)] {
+        check_chi2("beckmann vndf", &beckmann(alpha), wo_at(theta, 0.0), alpha);
+    }
+    let aniso = CookTorrance::new(
+        Beckmann::anisotropic(0.1, 0.5).unwrap(),
+        schlick(),
+        SmithHeightCorrelated,
+    );
+    check_chi2("aniso beckmann vndf", &aniso, wo_at(70.0, 45.0), 0.1);
+}
+
+#[test]
+fn beckmann_full_distribution_chi2() {
+    for (alpha, theta) in [(0.05, 0.0), (0.5, 80.0)] {
+        let m = beckmann(alpha).sampled_with::<FullDistribution>();
+        check_chi2("beckmann full", &m, wo_at(theta, 0.0), alpha);
+    }
+}
+
+#[test]
+fn blinn_phong_and_ashikhmin_shirley_ndfs_chi2() {
+    for (s, theta) in [(10.0, 0.0), (100.0, 60.0), (1.0, 85.0)] {
+        let m = CookTorrance::new(BlinnPhong::new(s).unwrap(), schlick(), VCavity);
+        check_chi2("blinn-phong", &m, wo_at(theta, 0.0), 1.0);
+    }
+    for (nu, nv, theta, phi) in [
+        (10.0, 1000.0, 30.0, 20.0),
+        (100.0, 10.0, 75.0, 200.0),
+        (0.0, 5.0, 0.0, 0.0),
+    ] {
+        let m = CookTorrance::new(AshikhminShirley::new(nu, nv).unwrap(), schlick(), VCavity);
+        check_chi2(
+            "ashikhmin-shirley",
+            &m,
+            wo_at(theta, phi),
+            if nu.max(nv) > 500.0 { 0.05 } else { 1.0 },
+        );
+    }
+}
+
+#[test]
+fn any_ndf_samples_like_the_wrapped_distribution() {
+    let wo = wo_at(50.0, 10.0);
+    let any = CookTorrance::new(
+        AnyNdf::from(Beckmann::new(0.3).unwrap()),
+        schlick(),
+        SmithHeightCorrelated,
+    );
+    check_chi2("any beckmann", &any, wo, 0.3);
+    let ggx_any = AnyNdf::from(GgxIsotropic::new(0.3).unwrap());
+    let ggx_direct = GgxIsotropic::new(0.3).unwrap();
+    let mut rng = Rng::new(3);
+    for _ in 0..1000 {
+        let u = [rng.uniform(), rng.uniform()];
+        let (a, b) = (ggx_any.sample_wm(wo, u), ggx_direct.sample_wm(wo, u));
+        assert_eq!([a.x, a.y, a.z], [b.x, b.y, b.z]);
+        assert_eq!(ggx_any.pdf_wm(wo, a), ggx_direct.pdf_wm(wo, b));
+    }
+}
+
+// --- The weights ---------------------------------------------------------------------------
+
+#[test]
+fn vndf_weight_is_fresnel_times_g2_over_g1() {
+    // F = 1 isolates G2/G1(wo); at normal incidence and α → small it tends to 1.
+    use brdf::masking::Masking;
+    use brdf::ndf::SmithLambda;
+    let ndf = GgxIsotropic::new(0.4).unwrap();
+    let m = CookTorrance::new(ndf, Schlick::new([1.0]).unwrap(), SmithHeightCorrelated);
+    let mut rng = Rng::new(11);
+    for _ in 0..1000 {
+        let wo = common::hemisphere(rng.uniform().max(1e-3), rng.uniform());
+        let s = m.sample(wo, rng.u3());
+        if !s.valid {
+            continue;
+        }
+        let wm = (s.wi + wo).normalize_or_zero();
+        let g = SmithHeightCorrelated.g2(&ndf, s.wi, wo, wm) / ndf.g1(wo);
+        assert!(
+            (s.weight[0] - g).abs() <= 1e-12 * g.max(1e-300),
+            "{} vs {g}",
+            s.weight[0]
+        );
+        assert!(s.weight[0] <= 1.0 + 1e-12);
+    }
+}
+
+// --- Inverse error function ----------------------------------------------------------------
+
+#[test]
+fn erf_inv_inverts_erf() {
+    // Reference values (Abramowitz & Stegun 26.2 / high-precision tables).
+    for (y, x) in [
+        (0.5, 0.476_936_276_204_469_9),
+        (0.9, 1.163_087_153_676_674_3),
+        (0.999, 2.326_753_765_513_524_6),
+        (-0.25, -0.225_312_055_012_178_1),
+    ] {
+        let got = erf_inv(y);
+        assert!(
+            (got - x).abs() <= 2e-7 * x.abs(),
+            "erf_inv({y}) = {got}, want {x}"
+        );
+    }
+    // Round trip on a grid, in the tails relative to 1 − |y|.
+    let mut worst: f64 = 0.0;
+    for i in 1..20_000 {
+        let y = -1.0 + 2.0 * i as f64 / 20_000.0;
+        let r = erf(erf_inv(y));
+        let scale = (1.0 - y.abs()).min(y.abs()).max(1e-300);
+        worst = worst.max((r - y).abs() / scale);
+    }
+    for t in [1e-3, 1e-6, 1e-9, 1e-12] {
+        let y = 1.0 - t;
+        let t = 1.0 - y; // exactly the represented tail
+        let x = erf_inv(y);
+        let back = brdf::ndf::erfc(x);
+        worst = worst.max((back - t).abs() / t);
+        assert_eq!(erf_inv(-y), -x);
+    }
+    assert!(worst < 1e-6, "worst relative round-trip error {worst:e}");
+    // f32 agrees with f64 to f32 accuracy where the f32 argument is exact.
+    for y in [0.0_f32, 0.125, 0.5, 0.75, 0.96875] {
+        let (a, b) = (erf_inv(y) as f64, erf_inv(y as f64));
+        assert!((a - b).abs() <= 4e-7 * b.abs().max(1e-3), "{y}: {a} vs {b}");
+    }
+    assert!(erf_inv(1.0_f64).is_finite() && erf_inv(-1.0_f32).is_finite());
+}
+
+// --- Rejection rates -----------------------------------------------------------------------
+
+fn invalid_fraction<M: SampleBrdf<f64, 1>>(m: &M, wo: Vec3<f64>, n: usize) -> f64 {
+    let mut rng = Rng::new(5);
+    (0..n).filter(|_| !m.sample(wo, rng.u3()).valid).count() as f64 / n as f64
+}
+
+#[test]
+fn bounded_vndf_rejects_fewer_samples() {
+    let n = 200_000;
+    let sigma = |p: f64| (p * (1.0 - p) / n as f64).sqrt();
+    // α = 1, normal incidence: the plain VNDF reflects below the horizon exactly when
+    // θm > 45°, i.e. for the lower half of the stretched sphere: probability 1/2.
+    // The bounded cap is the upper half: no sample is lost.
+    let wo = wo_at(0.0, 0.0);
+    let m = ggx_iso(1.0);
+    let plain = invalid_fraction(&m.sampled_with::<VisibleNormals>(), wo, n);
+    let caps = invalid_fraction(&m, wo, n);
+    let bounded = invalid_fraction(&m.sampled_with::<BoundedVisibleNormals>(), wo, n);
+    println!("α = 1, θo = 0: plain {plain}, caps {caps}, bounded {bounded}");
+    assert!((plain - 0.5).abs() < 5.0 * sigma(0.5), "plain {plain}");
+    assert!((caps - 0.5).abs() < 5.0 * sigma(0.5), "caps {caps}");
+    assert!(bounded < 1e-4, "bounded {bounded}");
+    // Elsewhere bounded never rejects more than plain (the same cap, cut).
+    for (alpha, theta) in [
+        (0.2, 80.0),
+        (0.5, 45.0),
+        (0.5, 80.0),
+        (1.0, 60.0),
+        (1.0, 89.0),
+    ] {
+        let m = ggx_iso(alpha);
+        let wo = wo_at(theta, 0.0);
+        let plain = invalid_fraction(&m.sampled_with::<VisibleNormals>(), wo, n);
+        let bounded = invalid_fraction(&m.sampled_with::<BoundedVisibleNormals>(), wo, n);
+        println!("α = {alpha}, θo = {theta}: plain {plain}, bounded {bounded}");
+        assert!(
+            bounded < plain,
+            "α = {alpha}, θo = {theta}: {bounded} ≥ {plain}"
+        );
+    }
+}
+
+// --- Extremes ------------------------------------------------------------------------------
+
+fn assert_finite_sample<R: Real, const N: usize, M: SampleBrdf<R, N>>(
+    name: &str,
+    m: &M,
+    wo: Vec3<R>,
+    u: [R; 3],
+) {
+    let s = m.sample(wo, u);
+    let fin = |x: R| R::all(x.is_finite());
+    assert!(
+        fin(s.wi.x)
+            && fin(s.wi.y)
+            && fin(s.wi.z)
+            && fin(s.pdf)
+            && s.weight.iter().all(|w| fin(*w))
+            && s.f.iter().all(|w| fin(*w)),
+        "{name}: {s:?} at wo = {wo:?}, u = {u:?}"
+    );
+    let p = m.pdf(wo, s.wi);
+    assert!(fin(p) && R::all(p.ge(R::zero())), "{name}: pdf {p:?}");
+}
+
+fn extremes_on<R: brdf::Scalar>() {
+    let one_minus =
+        R::one() - R::from_f64(f64::EPSILON).max(R::from_f64(f32::EPSILON as f64 / 2.0));
+    let us = [R::zero(), R::from_f64(0.5), one_minus];
+    let c = R::from_f64(1e-7);
+    let s = (R::one() - c * c).sqrt();
+    let wos = [
+        Vec3::new(R::zero(), R::zero(), R::one()),
+        Vec3::new(s, R::zero(), c),
+        Vec3::new(s * R::from_f64(0.6), s * R::from_f64(0.8), c),
+        Vec3::new(R::from_f64(0.6), R::zero(), R::from_f64(0.8)),
+    ];
+    let fr = Schlick::new([R::from_f64(0.04)]).unwrap();
+    for alpha in [brdf::ndf::MIN_ALPHA, 0.01, 1.0] {
+        let a = R::from_f64(alpha);
+        let gi = CookTorrance::new(GgxIsotropic::new(a).unwrap(), fr, SmithHeightCorrelated);
+        let ga = CookTorrance::new(
+            Ggx::anisotropic(a, R::one()).unwrap(),
+            fr,
+            SmithHeightCorrelated,
+        );
+        let b = CookTorrance::new(Beckmann::new(a).unwrap(), fr, SmithHeightCorrelated);
+        let ba = CookTorrance::new(
+            Beckmann::anisotropic(R::one(), a).unwrap(),
+            fr,
+            SmithHeightCorrelated,
+        );
+        for wo in wos {
+            for u0 in us {
+                for u1 in us {
+                    let u = [u0, u1, R::zero()];
+                    assert_finite_sample("ggx caps", &gi, wo, u);
+                    assert_finite_sample("ggx vndf", &gi.sampled_with::<VisibleNormals>(), wo, u);
+                    assert_finite_sample(
+                        "ggx bounded",
+                        &gi.sampled_with::<BoundedVisibleNormals>(),
+                        wo,
+                        u,
+                    );
+                    assert_finite_sample("ggx full", &gi.sampled_with::<FullDistribution>(), wo, u);
+                    assert_finite_sample("aniso ggx caps", &ga, wo, u);
+                    assert_finite_sample(
+                        "aniso ggx bounded",
+                        &ga.sampled_with::<BoundedVisibleNormals>(),
+                        wo,
+                        u,
+                    );
+                    assert_finite_sample(
+                        "aniso ggx vndf",
+                        &ga.sampled_with::<VisibleNormals>(),
+                        wo,
+                        u,
+                    );
+                    assert_finite_sample("beckmann vndf", &b, wo, u);
+                    assert_finite_sample("aniso beckmann vndf", &ba, wo, u);
+                    assert_finite_sample(
+                        "beckmann full",
+                        &b.sampled_with::<FullDistribution>(),
+                        wo,
+                        u,
+                    );
+                }
+            }
+        }
+    }
+    for sh in [0.0, 1.0, brdf::ndf::MAX_SHININESS] {
+        let sh = R::from_f64(sh);
+        let bp = CookTorrance::new(BlinnPhong::new(sh).unwrap(), fr, VCavity);
+        let as1 = CookTorrance::new(AshikhminShirley::new(sh, R::zero()).unwrap(), fr, VCavity);
+        let as2 = CookTorrance::new(
+            AshikhminShirley::new(R::from_f64(3.0), sh).unwrap(),
+            fr,
+            VCavity,
+        );
+        for wo in wos {
+            for u0 in us {
+                for u1 in us {
+                    let u = [u0, u1, R::zero()];
+                    assert_finite_sample("blinn-phong", &bp, wo, u);
+                    assert_finite_sample("ashikhmin-shirley", &as1, wo, u);
+                    assert_finite_sample("ashikhmin-shirley", &as2, wo, u);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn samples_are_finite_at_the_extremes() {
+    extremes_on::<f32>();
+    extremes_on::<f64>();
+}
+
+// --- Lanes against scalars -----------------------------------------------------------------
+
+/// One output of a strategy on lanes: `which` 0..3 = wm.x, wm.y, wm.z, 3 = pdf_wm.
+fn strategy_out<R: Real, D: brdf::ndf::Ndf<R>, St: NormalSampler<R, D>>(
+    ndf: &D,
+    wo: Vec3<R>,
+    u: [R; 2],
+    which: usize,
+) -> R {
+    let wm = St::sample_wm(ndf, wo, u);
+    [wm.x, wm.y, wm.z, St::pdf_wm(ndf, wo, wm)][which]
+}
+
+/// `which` selects the output, `kind` the NDF × strategy.
+fn lane_body<R: Real>(ox: R, oz: R, u0: R, u1: R, a: R, kind: usize, which: usize) -> R {
+    let wo = Vec3::new(ox, ox * R::from_f64(0.5), oz).normalize_or_zero();
+    let u = [u0, u1];
+    let b = R::from_f64(0.5) + a;
+    match kind {
+        0 => strategy_out::<R, _, SphericalCaps>(
+            &Ggx::from_lanes(a, b.min(R::one())).unwrap(),
+            wo,
+            u,
+            which,
+        ),
+        1 => strategy_out::<R, _, VisibleNormals>(
+            &Ggx::from_lanes(a, b.min(R::one())).unwrap(),
+            wo,
+            u,
+            which,
+        ),
+        2 => strategy_out::<R, _, BoundedVisibleNormals>(
+            &Ggx::from_lanes(a, b.min(R::one())).unwrap(),
+            wo,
+            u,
+            which,
+        ),
+        3 => strategy_out::<R, _, FullDistribution>(
+            &Ggx::from_lanes(a, b.min(R::one())).unwrap(),
+            wo,
+            u,
+            which,
+        ),
+        4 => {
+            strategy_out::<R, _, VisibleNormals>(&Beckmann::from_lanes(a, a).unwrap(), wo, u, which)
+        }
+        5 => strategy_out::<R, _, FullDistribution>(
+            &Beckmann::from_lanes(a, a).unwrap(),
+            wo,
+            u,
+            which,
+        ),
+        6 => strategy_out::<R, _, FullDistribution>(
+            &BlinnPhong::from_lanes(R::from_f64(2.0) / (a * a)).unwrap(),
+            wo,
+            u,
+            which,
+        ),
+        _ => strategy_out::<R, _, FullDistribution>(
+            &AshikhminShirley::from_lanes(R::from_f64(1.0) / a, R::from_f64(10.0)).unwrap(),
+            wo,
+            u,
+            which,
+        ),
+    }
+}
+
+#[test]
+fn lanes_agree_with_the_scalar() {
+    let mut rng = Rng::new(42);
+    let rows: Vec<[f64; 5]> = (0..64)
+        .map(|_| {
+            let t = rng.uniform() * 1.5;
+            [
+                t.sin(),
+                t.cos(),
+                rng.uniform(),
+                rng.uniform(),
+                0.05 + 0.9 * rng.uniform(),
+            ]
+        })
+        .collect();
+    let mut report = Vec::new();
+    for kind in 0..8 {
+        for which in 0..4 {
+            let rows: Vec<[f64; 7]> = rows
+                .iter()
+                .map(|r| [r[0], r[1], r[2], r[3], r[4], kind as f64, which as f64])
+                .collect();
+            let worst = common::assert_lanes_match!("strategy", ulp = 32, abs = 1e-7, &rows,
+            fn(ox, oz, u0, u1, a, kind, which) {
+                lane_body(ox, oz, u0, u1, a, kind.lane(0).into() as usize, which.lane(0).into() as usize)
+            });
+            report.push((kind, which, worst));
+        }
+    }
+    println!("worst ULP distance per (strategy, output): {report:?}");
+}
