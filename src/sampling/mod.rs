@@ -22,7 +22,9 @@
 //! The microfacet conventions (to compare with pbrt-v4 and Mitsuba 3): the visible-normal
 //! density is `D_wo(wm) = G1(wo)·max(0, wo·wm)·D(wm) / cos θo` (Heitz 2014, eq. 2), and a
 //! reflection maps a normal density to a direction density with the Jacobian
-//! `|∂wm/∂wi| = 1 / (4 |wo·wm|)` (Walter et al. 2007, eq. 14).
+//! `|∂wm/∂wi| = 1 / (4 |wo·wm|)` (Walter et al. 2007, eq. 14). The microfacet samplers
+//! (visible normals, spherical caps, bounded VNDF, `D cos θm`) and [`SampleBrdf`] for
+//! [`CookTorrance`](crate::models::CookTorrance) are in [`microfacet`].
 //!
 //! Everything is generic over [`Real`]: one sample on `f32`/`f64`, one per lane on SIMD types,
 //! branch-free.
@@ -32,7 +34,7 @@
 //! G. Humphreys, *Physically Based Rendering*, 4th ed., 2023, §9.
 
 pub(crate) mod lobes;
-mod microfacet;
+pub mod microfacet;
 pub use microfacet::{
     Auto, BoundedVisibleNormals, FullDistribution, NormalSampler, SampleNdf, Sampled,
     SphericalCaps, VisibleNormals, erf_inv,
