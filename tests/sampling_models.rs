@@ -14,7 +14,7 @@ use brdf::models::{
 };
 use brdf::real::Splat;
 use brdf::{Brdf, Real, SampleBrdf, Scalar, Vec3, f32x8};
-use common::chi2::{Chi2Config, Rng, chi2, sidak};
+use common::chi2::{Chi2Config, Rng};
 
 /// Number of χ² configurations in this file (the Šidák correction divides the 1 % level
 /// among them). Keep it ≥ the count of `check_chi2` calls (asserted by `chi2_budget`).
@@ -45,74 +45,15 @@ const FINE: Chi2Config = Chi2Config {
     ..Chi2Config::DEFAULT
 };
 
-/// [`check_chi2`] with the histogram `cfg`.
+/// [`check_chi2`] with the histogram `cfg` ([`common::chi2::check_sampler`], `f` within
+/// 1e-6 of `eval`).
 pub fn check_chi2_with<const N: usize, M: SampleBrdf<f64, N>>(
     name: &str,
     model: &M,
     wo: Vec3<f64>,
     cfg: &Chi2Config,
 ) {
-    let cfg = *cfg;
-    let mut worst_pdf: f64 = 0.0;
-    let mut worst_weight: f64 = 0.0;
-    let out = chi2(
-        &mut |u| {
-            let s = model.sample(wo, u);
-            if !s.valid {
-                assert_eq!(s.pdf, 0.0, "{name}: invalid sample with pdf");
-                assert!(
-                    s.weight.iter().all(|w| *w == 0.0),
-                    "{name}: invalid sample with weight"
-                );
-                return None;
-            }
-            let p = model.pdf(wo, s.wi);
-            worst_pdf = worst_pdf.max((s.pdf - p).abs() / p);
-            let f = model.eval(s.wi, wo);
-            for ((&sf, &ef), &sw) in s.f.iter().zip(&f).zip(&s.weight) {
-                let rel_f = (sf - ef).abs() / ef.abs().max(1e-300);
-                assert!(
-                    rel_f <= 1e-6,
-                    "{name}: sample's f {sf:e} differs from eval {ef:e}"
-                );
-                let w = ef * s.wi.z / s.pdf;
-                if w != 0.0 {
-                    worst_weight = worst_weight.max((sw - w).abs() / w.abs());
-                }
-                assert!(sw.is_finite(), "{name}: weight {:?}", s.weight);
-            }
-            Some(s.wi)
-        },
-        &|wi| model.pdf(wo, wi),
-        &cfg,
-    )
-    .unwrap_or_else(|e| panic!("{name} at {wo:?}: {e}"));
-    let level = sidak(0.01, TESTS);
-    assert!(
-        out.p_value > level,
-        "{name} at {wo:?}: χ² rejected, p = {:e} < {level:e} ({out:?})",
-        out.p_value
-    );
-    let valid = 1.0 - out.invalid_fraction;
-    let sigma = (valid * (1.0 - valid) / cfg.samples as f64).sqrt();
-    assert!(
-        out.integral <= 1.0 + 1e-4,
-        "{name}: ∫pdf = {}",
-        out.integral
-    );
-    assert!(
-        (out.integral - valid).abs() <= 4.0 * sigma + 1e-4,
-        "{name} at {wo:?}: ∫pdf = {} but {valid} of the samples are valid",
-        out.integral
-    );
-    assert!(
-        worst_pdf <= 1e-6,
-        "{name}: sample().pdf vs pdf(): {worst_pdf:e}"
-    );
-    assert!(
-        worst_weight <= 1e-5,
-        "{name}: weight vs f cos/pdf: {worst_weight:e}"
-    );
+    common::chi2::check_sampler(name, model, wo, cfg, TESTS, 1e-6);
 }
 
 /// `check_chi2` at every angle of [`ANGLES`] (azimuth `phi` degrees), on [`FINE`] cells if

@@ -5,7 +5,7 @@
 //! The test also fails if a sample lands in a cell whose integrated density is exactly zero,
 //! or below the horizon.
 
-use brdf::Vec3;
+use brdf::{SampleBrdf, Vec3};
 use std::f64::consts::PI;
 
 /// SplitMix64 (Steele, Lea, Flood 2014): a small, well-mixed generator for reproducible tests.
@@ -275,4 +275,81 @@ pub fn chi2(
         integral,
         invalid_fraction: invalid as f64 / n,
     })
+}
+
+/// χ² of `model`'s sampler at `wo` on `cfg`'s histogram (at the Šidák-corrected 1 % level
+/// for `tests` tests), plus: ∫pdf ≤ 1 + 1e-4 and = 1 − invalid fraction (within 4σ of the
+/// binomial estimate + 1e-4), `sample().pdf == pdf()` to 1e-6 relative, the sample's `f`
+/// equal to `eval` within `f_rel` relative (0: bit for bit) and `weight == f cos θi / pdf`
+/// to 1e-5 relative on every sample, invalid samples with zero pdf and weight. Returns the
+/// invalid fraction.
+pub fn check_sampler<const N: usize, M: SampleBrdf<f64, N>>(
+    name: &str,
+    model: &M,
+    wo: Vec3<f64>,
+    cfg: &Chi2Config,
+    tests: usize,
+    f_rel: f64,
+) -> f64 {
+    let mut worst_pdf: f64 = 0.0;
+    let mut worst_weight: f64 = 0.0;
+    let out = chi2(
+        &mut |u| {
+            let s = model.sample(wo, u);
+            if !s.valid {
+                assert_eq!(s.pdf, 0.0, "{name}: invalid sample with pdf");
+                assert!(
+                    s.weight.iter().all(|w| *w == 0.0),
+                    "{name}: invalid sample with weight"
+                );
+                return None;
+            }
+            let p = model.pdf(wo, s.wi);
+            worst_pdf = worst_pdf.max((s.pdf - p).abs() / p);
+            let f = model.eval(s.wi, wo);
+            for ((&sf, &ef), &sw) in s.f.iter().zip(&f).zip(&s.weight) {
+                let rel_f = (sf - ef).abs() / ef.abs().max(1e-300);
+                assert!(
+                    rel_f <= f_rel,
+                    "{name}: sample's f {sf:e} differs from eval {ef:e}"
+                );
+                let w = ef * s.wi.z / s.pdf;
+                if w != 0.0 {
+                    worst_weight = worst_weight.max((sw - w).abs() / w.abs());
+                }
+                assert!(sw.is_finite(), "{name}: weight {:?}", s.weight);
+            }
+            Some(s.wi)
+        },
+        &|wi| model.pdf(wo, wi),
+        cfg,
+    )
+    .unwrap_or_else(|e| panic!("{name} at {wo:?}: {e}"));
+    let level = sidak(0.01, tests);
+    assert!(
+        out.p_value > level,
+        "{name} at {wo:?}: χ² rejected, p = {:e} < {level:e} ({out:?})",
+        out.p_value
+    );
+    let valid = 1.0 - out.invalid_fraction;
+    let sigma = (valid * (1.0 - valid) / cfg.samples as f64).sqrt();
+    assert!(
+        out.integral <= 1.0 + 1e-4,
+        "{name}: ∫pdf = {}",
+        out.integral
+    );
+    assert!(
+        (out.integral - valid).abs() <= 4.0 * sigma + 1e-4,
+        "{name} at {wo:?}: ∫pdf = {} but {valid} of the samples are valid",
+        out.integral
+    );
+    assert!(
+        worst_pdf <= 1e-6,
+        "{name}: sample().pdf vs pdf(): {worst_pdf:e}"
+    );
+    assert!(
+        worst_weight <= 1e-5,
+        "{name}: weight vs f cos/pdf: {worst_weight:e}"
+    );
+    out.invalid_fraction
 }
