@@ -5,8 +5,12 @@ use std::hint::black_box;
 
 use brdf::SampleBrdf;
 use brdf::batch::{self, Directions, Isa, SampleOut};
-use brdf::models::{Lambert, OrenNayar};
+use brdf::fresnel::Schlick;
+use brdf::masking::SmithHeightCorrelated;
+use brdf::models::{CookTorrance, Lambert, OrenNayar};
+use brdf::ndf::{Beckmann, GgxIsotropic};
 use brdf::real::F32Fma;
+use brdf::sampling::{BoundedVisibleNormals, FullDistribution, SphericalCaps, VisibleNormals};
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 
 const N: usize = 1 << 16;
@@ -92,5 +96,47 @@ fn diffuse(c: &mut Criterion) {
     );
 }
 
-criterion_group!(benches, diffuse);
+/// GGX Cook-Torrance (`GgxIsotropic`, α = 0.3, Schlick F0 = 0.04, height-correlated Smith)
+/// with each normal-sampling strategy, and Beckmann's visible normals (bracketed Newton) for
+/// comparison: the ratio between strategies is the figure to read.
+fn microfacet(c: &mut Criterion) {
+    let ggx = CookTorrance::new(
+        GgxIsotropic::new(0.3_f32).unwrap(),
+        Schlick::new([0.04_f32]).unwrap(),
+        SmithHeightCorrelated,
+    );
+    let group = "sample_ggx";
+    bench_sampler(
+        c,
+        group,
+        "visible_normals",
+        &ggx.sampled_with::<VisibleNormals>(),
+    );
+    bench_sampler(
+        c,
+        group,
+        "spherical_caps",
+        &ggx.sampled_with::<SphericalCaps>(),
+    );
+    bench_sampler(
+        c,
+        group,
+        "bounded_visible_normals",
+        &ggx.sampled_with::<BoundedVisibleNormals>(),
+    );
+    bench_sampler(
+        c,
+        group,
+        "full_distribution",
+        &ggx.sampled_with::<FullDistribution>(),
+    );
+    let beckmann = CookTorrance::new(
+        Beckmann::new(0.3_f32).unwrap(),
+        Schlick::new([0.04_f32]).unwrap(),
+        SmithHeightCorrelated,
+    );
+    bench_sampler(c, "sample_beckmann", "visible_normals", &beckmann);
+}
+
+criterion_group!(benches, diffuse, microfacet);
 criterion_main!(benches);

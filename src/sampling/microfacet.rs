@@ -749,6 +749,15 @@ where
     fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R {
         pdf_ct::<R, D, Auto>(&self.ndf, wo, wi)
     }
+    /// The channel mean of the Fresnel term at the view angle, `mean(F(cos θo))`: the
+    /// directional albedo with `F = 1` is at most 1 (0.3 to 1 for GGX), so this bounds the
+    /// lobe's albedo from above up to the Fresnel term's variation over the lobe; a mixture
+    /// ([`Sum`](crate::models::Sum), [`Layered`](crate::models::Layered)) uses it to pick
+    /// the lobe, and any positive estimate keeps the mixture unbiased.
+    #[inline(always)]
+    fn albedo_estimate(&self, wo: Vec3<R>) -> R {
+        crate::sampling::lobes::mean(self.fresnel.eval(wo.z.saturate()))
+    }
 }
 
 /// A model sampled by the strategy `St` instead of its default: [`Brdf`] is the model's,
@@ -815,5 +824,22 @@ where
     #[inline(always)]
     fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R {
         pdf_ct::<R, D, St>(&self.model.ndf, wo, wi)
+    }
+    #[inline(always)]
+    fn albedo_estimate(&self, wo: Vec3<R>) -> R {
+        crate::sampling::lobes::mean(self.model.fresnel.eval(wo.z.saturate()))
+    }
+}
+
+/// The model splatted, the strategy kept: a [`Sampled`] model goes through the batch path
+/// ([`batch::sample`](crate::batch::sample)) like the model it wraps.
+impl<M: crate::real::Splat, St> crate::real::Splat for Sampled<M, St> {
+    type On<L: Real> = Sampled<M::On<L>, St>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Self::On<L> {
+        Sampled {
+            model: self.model.splat(),
+            _st: PhantomData,
+        }
     }
 }
