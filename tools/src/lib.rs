@@ -13,6 +13,7 @@ use std::sync::{Arc, OnceLock};
 use resvg::{tiny_skia, usvg};
 
 pub mod render;
+pub mod sampling_stats;
 
 // ---------------------------------------------------------------------------------------------
 // Display encoding

@@ -920,6 +920,68 @@ fn lobes(dir: &Path) -> Res<PathBuf> {
     })
 }
 
+// ---------------------------------------------------------------------------------------------
+// 7. Monte-Carlo error against sample count (sampling)
+// ---------------------------------------------------------------------------------------------
+
+/// RMS error (over 16 independent streams) of the furnace estimate of GGX's directional
+/// albedo (F = 1, α = 0.3, θo = 60° and α = 0.05, θo = 0°) against the sample count, for the
+/// GGX samplers and the cosine hemisphere; log-log, with the expected slope −1/2.
+fn sampling_error(dir: &Path) -> Res<PathBuf> {
+    use brdf_tools::sampling_stats::{exact_albedo, furnace_stats, strategies, wo_at};
+    const STREAMS: u64 = 16;
+    let counts: Vec<usize> = (2..=15).map(|k| 1usize << k).collect();
+    figure(dir, "sampling_error", (1000, 450), |root| {
+        let (left, right) = root.split_horizontally(k(500));
+        for (area, alpha, theta, title) in [
+            (&left, 0.3, 60.0, "GGX α = 0.3, θo = 60°, F = 1"),
+            (&right, 0.05, 0.0, "GGX α = 0.05, θo = 0°, F = 1"),
+        ] {
+            let wo = wo_at(theta);
+            let e = exact_albedo(alpha, wo);
+            let curves: Vec<Curve> = strategies(alpha)
+                .iter()
+                .enumerate()
+                .map(|(i, (name, s))| {
+                    let pts = counts
+                        .iter()
+                        .map(|&n| {
+                            let mse = (0..STREAMS)
+                                .map(|seed| {
+                                    let m =
+                                        furnace_stats(s.as_ref(), wo, n, 1000 * seed + i as u64)
+                                            .mean;
+                                    (m - e).powi(2)
+                                })
+                                .sum::<f64>()
+                                / STREAMS as f64;
+                            (n as f64, mse.sqrt().max(1e-9))
+                        })
+                        .collect();
+                    Curve::new((*name).to_string(), colour(i), pts)
+                })
+                .collect();
+            let y = curves
+                .iter()
+                .flat_map(|c| c.points.iter().map(|p| p.1))
+                .fold((f64::INFINITY, 0.0f64), |(a, b), y| (a.min(y), b.max(y)));
+            log_log_panel(
+                area,
+                &Panel {
+                    title,
+                    x: "samples",
+                    y: "RMS error of the albedo estimate",
+                    legend: SeriesLabelPosition::LowerLeft,
+                },
+                (counts[0] as f64)..(*counts.last().expect("counts") as f64),
+                (y.0 * 0.7)..(y.1 * 1.4),
+                &curves,
+            )?;
+        }
+        Ok(())
+    })
+}
+
 fn main() {
     let args = brdf_tools::Args::parse(&["--out"], &[], USAGE);
     let out = args
@@ -932,13 +994,14 @@ fn main() {
         std::process::exit(1);
     }
     let start = std::time::Instant::now();
-    let jobs: [(&str, PlotFn); 6] = [
+    let jobs: [(&str, PlotFn); 7] = [
         ("Fresnel reflectance of the presets", fresnel_materials),
         ("linear vs gamma-encoded Fresnel", fresnel_gamma),
         ("normalization factors", normalization_plot),
         ("Schlick's error", schlick_error),
         ("directional albedo of every model", albedo),
         ("lobes in the plane of incidence", lobes),
+        ("Monte-Carlo error against sample count", sampling_error),
     ];
     let total = jobs.len();
     for (i, (what, job)) in jobs.into_iter().enumerate() {

@@ -1584,6 +1584,53 @@ fn print_table(t: &Table) -> usize {
     bad
 }
 
+/// Sampling (issue 10): the variance of one sample's furnace estimate of a GGX Cook-Torrance's
+/// directional albedo (F = 1) under each strategy, and the fraction of samples lost below
+/// the horizon, for α ∈ {0.05, 0.3, 1} and θo ∈ {0°, 60°, 85°}.
+fn sampling_report() {
+    use brdf_tools::sampling_stats::{exact_albedo, furnace_stats, strategies, wo_at};
+    const SAMPLES: usize = 200_000;
+    println!(
+        "### Sampling: variance of the white-furnace albedo estimate (GGX, F = 1)\n\n\
+         Variance of one sample's weight `f cos θi / pdf` ({SAMPLES} samples per cell, f64; the \
+         estimator's variance is this over the sample count), and in brackets the fraction of \
+         samples reflected below the horizon (weight 0). `E` is the exact albedo (quadrature); \
+         each mean agrees with it within 4σ (checked).\n"
+    );
+    let names: Vec<&str> = strategies(0.5).iter().map(|(n, _)| *n).collect();
+    println!("| α | θo | E | {} |", names.join(" | "));
+    println!("|---|---|---|{}", "---:|".repeat(names.len()));
+    let mut bad = 0;
+    for alpha in [0.05, 0.3, 1.0] {
+        for theta in [0.0, 60.0, 85.0] {
+            let wo = wo_at(theta);
+            let e = exact_albedo(alpha, wo);
+            let cells: Vec<String> = strategies(alpha)
+                .iter()
+                .enumerate()
+                .map(|(i, (name, s))| {
+                    let st = furnace_stats(s.as_ref(), wo, SAMPLES, 17 + i as u64);
+                    let sigma = (st.variance / SAMPLES as f64).sqrt();
+                    if (st.mean - e).abs() > 4.0 * sigma + 1e-9 {
+                        eprintln!(
+                            "sampling: {name} at α = {alpha}, θo = {theta}°: mean {} vs {e}",
+                            st.mean
+                        );
+                        bad += 1;
+                    }
+                    format!("{:.3e} ({:.1} %)", st.variance, 100.0 * st.lost)
+                })
+                .collect();
+            println!("| {alpha} | {theta}° | {e:.4} | {} |", cells.join(" | "));
+        }
+    }
+    println!();
+    if bad > 0 {
+        eprintln!("{bad} sampling estimates outside 4σ of the quadrature");
+        std::process::exit(1);
+    }
+}
+
 fn main() {
     // No options besides --help: anything else is an error (exit status 2).
     let _ = brdf_tools::Args::parse(&[], &[], USAGE);
@@ -1620,6 +1667,7 @@ fn main() {
     for t in &tables {
         bad += print_table(t);
     }
+    sampling_report();
     println!("Total run time: {:.1} s.", start.elapsed().as_secs_f64());
     if bad > 0 {
         eprintln!("{bad} rows with non-finite values");
