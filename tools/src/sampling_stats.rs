@@ -104,7 +104,7 @@ impl Uniform {
         Self(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ 0x2545_f491_4f6c_dd1d)
     }
     /// The next number, 53 random bits.
-    pub fn next(&mut self) -> f64 {
+    pub fn draw(&mut self) -> f64 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -135,7 +135,7 @@ pub fn furnace_stats(
     let mut rng = Uniform::new(seed);
     let (mut sum, mut sum2, mut lost) = (0.0, 0.0, 0usize);
     for _ in 0..n {
-        let s = sampler.sample(wo, [rng.next(), rng.next(), rng.next()]);
+        let s = sampler.sample(wo, [rng.draw(), rng.draw(), rng.draw()]);
         lost += usize::from(!s.valid);
         sum += s.weight[0];
         sum2 += s.weight[0] * s.weight[0];
