@@ -648,6 +648,13 @@ pub trait SqrtFn: Copy + core::fmt::Debug + Default + Send + Sync + 'static {
     /// `(√x, 1/√x)` for positive normal `x`. At `x = 0` the first is `0` and the second is
     /// `+∞` ([`ExactSqrt`]) or a large finite value ([`NewtonSqrt`]): callers select it away.
     fn sqrt_rsqrt<R: Real>(x: R) -> (R, R);
+
+    /// `n / d` for the model's final denominator (positive normal `d`): the correctly rounded
+    /// division unless the policy says otherwise ([`NewtonSqrtRecip`] uses [`recip`]).
+    #[inline(always)]
+    fn div<R: Real>(n: R, d: R) -> R {
+        n / d
+    }
 }
 
 /// [`SqrtFn`] through the correctly rounded [`Real::sqrt`] and a division.
@@ -672,5 +679,109 @@ impl<const STEPS: usize> SqrtFn for NewtonSqrt<STEPS> {
     fn sqrt_rsqrt<R: Real>(x: R) -> (R, R) {
         let y = rsqrt::<STEPS, R>(x);
         (x * y, y)
+    }
+}
+
+/// `1/x` for positive `x` from [`Real::rsqrt_estimate`] squared, refined by `N`
+/// Newton–Raphson steps, `0 ≤ N ≤ 3`: multiplies and adds only, no division.
+///
+/// ```text
+/// y₀ = rsqrt_estimate(x)²,   e_k = 1 − x·y_k,   y_{k+1} = y_k + y_k·e_k
+/// ```
+///
+/// Each step squares the relative error (`1 − x·y_{k+1} = e_k²`); the start carries
+/// `δ₀ = 2e + e²` for an estimate of relative error `e`. Domain: positive normal finite `x`
+/// (the models' denominators, which are sums of squares clamped away from 0); inputs below
+/// the smallest normal are raised to it (a large finite result instead of `∞`). Relative error
+/// bounds against `1/x` (`f32`, checked exhaustively on `[1, 4)` in `tests/fast.rs`):
+///
+/// ```text
+/// start                                         N = 0     1        2        3
+/// bit trick (f32, F32Fma scalars: the kernels)  7.0e-2    4.9e-3   2.4e-5   1.8e-7
+/// hardware rsqrtps (f32 lanes)                  7.3e-4    5.4e-7   1.8e-7   1.8e-7
+/// ```
+///
+/// so `N = 3` is within 3 roundings (≈ 1.5 ULP) on every type.
+///
+/// Why not `vrcp14ps`/`vrcpps` directly: the [`crate::batch`] kernels run a one-lane model
+/// (`f32`/[`F32Fma`](crate::real::F32Fma)) that LLVM vectorizes across iterations, and LLVM
+/// does not vectorize the scalar `rcp14ss`/`rcpss` intrinsics; the integer bit trick
+/// vectorizes into 16-lane integer subtracts and shifts, so this form runs on the
+/// vector units without a division (see the README's Performance section for what it buys).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::fast;
+/// let y = fast::recip::<3, f32>(3.0);
+/// assert!((y * 3.0 - 1.0).abs() < 2e-7);
+/// ```
+#[inline]
+#[must_use]
+pub fn recip<const N: usize, R: Real>(x: R) -> R {
+    const { assert!(N <= 3, "fast::recip takes 0..=3 Newton steps") };
+    let x = x.max(min_positive::<R>());
+    let r = x.rsqrt_estimate();
+    let mut y = r * r;
+    for _ in 0..N {
+        let e = (-x).mul_add(y, R::one());
+        y = y.mul_add(e, y);
+    }
+    y
+}
+
+/// How a model divides by its denominators (a sum of positive terms, such as Cook-Torrance's
+/// `dd·vd` or the conductor Fresnel's `2·den_s·den_p`), chosen at compile time.
+///
+/// * [`ExactRecip`]: the correctly rounded `n / d` (a division).
+/// * [`NewtonRecip`]`<STEPS>`: `n · `[`recip`]`::<STEPS>(d)` (multiplies and adds only).
+///
+/// Used through [`NewtonSqrtRecip`], the [`SqrtFn`] that carries it into
+/// [`crate::models::CookTorrance`].
+pub trait RecipFn: Copy + core::fmt::Debug + Default + Send + Sync + 'static {
+    /// `n / d` for positive normal `d`.
+    fn div<R: Real>(n: R, d: R) -> R;
+}
+
+/// [`RecipFn`] through the correctly rounded division.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ExactRecip;
+
+impl RecipFn for ExactRecip {
+    #[inline(always)]
+    fn div<R: Real>(n: R, d: R) -> R {
+        n / d
+    }
+}
+
+/// [`RecipFn`] through [`recip`]`::<STEPS>`: `n / d ≈ n · recip(d)` (relative error: the
+/// bound of `recip::<STEPS>` plus one rounding; `STEPS = 3` for a few ULP in `f32`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NewtonRecip<const STEPS: usize>;
+
+impl<const STEPS: usize> RecipFn for NewtonRecip<STEPS> {
+    #[inline(always)]
+    fn div<R: Real>(n: R, d: R) -> R {
+        n * recip::<STEPS, R>(d)
+    }
+}
+
+/// [`SqrtFn`] with the half vector taken by [`rsqrt`]`::<SQRT>` (as [`NewtonSqrt`]) and the
+/// model's final division by [`recip`]`::<RECIP>` ([`NewtonRecip`]): a Cook-Torrance
+/// `with_sqrt::<NewtonSqrtRecip<3, 3>>()` evaluates GGX without a square root or division
+/// outside its masking terms, and a [`crate::fresnel::Conductor::with_policy`] conductor
+/// without any. `<3, 3>` stays within 16 ULP of the exact policy on these models (tested;
+/// measured maxima in `docs/tradeoffs.md`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NewtonSqrtRecip<const SQRT: usize, const RECIP: usize>;
+
+impl<const SQRT: usize, const RECIP: usize> SqrtFn for NewtonSqrtRecip<SQRT, RECIP> {
+    #[inline(always)]
+    fn sqrt_rsqrt<R: Real>(x: R) -> (R, R) {
+        NewtonSqrt::<SQRT>::sqrt_rsqrt(x)
+    }
+    #[inline(always)]
+    fn div<R: Real>(n: R, d: R) -> R {
+        NewtonRecip::<RECIP>::div(n, d)
     }
 }

@@ -92,9 +92,12 @@
 //! * M. Pharr, W. Jakob, G. Humphreys, *Physically Based Rendering*, 4th ed., §9.3.
 //! * Y. Gotanda, "Basic of Reflectance", tri-Ace, 2009 (the seed talk).
 
+use core::marker::PhantomData;
+
 use num_complex::Complex;
 
 use crate::error::{self, Error};
+use crate::fast::{ExactSqrt, SqrtFn};
 use crate::ior::Preset;
 use crate::real::{Splat, splat_array, splat_scalar};
 use crate::{Real, Scalar};
@@ -494,17 +497,25 @@ impl<R: Real> ConductorConsts<R> {
     ///   both polarizations (every term is a sum of squares: no cancellation).
     #[inline(always)]
     fn reflectance(&self, c: R, c2: R) -> R {
+        self.reflectance_with::<ExactSqrt>(c, c2)
+    }
+
+    /// [`Self::reflectance`] with its square roots and divisions taken by `P` (the same
+    /// bits for [`ExactSqrt`]).
+    #[inline(always)]
+    fn reflectance_with<P: SqrtFn>(&self, c: R, c2: R) -> R {
+        let sqrt = |x: R| P::sqrt_rsqrt(x).0;
         let nk2 = self.nk2;
         let s2 = R::one() - c2;
         let t0 = self.t0(c2);
-        let h = t0.mul_add(t0, R::from_f64(4.0) * nk2).sqrt();
+        let h = sqrt(t0.mul_add(t0, R::from_f64(4.0) * nk2));
         let big = (h + t0.abs()) * R::from_f64(0.5);
-        let small = nk2 / big.max(R::from_f64(1e-30));
+        let small = P::div(nk2, big.max(R::from_f64(1e-30)));
         let t0_pos = t0.ge(R::zero());
         let a2 = R::select(t0_pos, big, small);
         let b2 = R::select(t0_pos, small, big);
         // η̃ = 1: a = c exactly (then b = 0 and num_s = 0).
-        let a = R::select(self.matched(), c, a2.sqrt());
+        let a = R::select(self.matched(), c, sqrt(a2));
         let (am, ap) = (a - c, a + c);
         let num_s = am.mul_add(am, b2);
         let den_s = ap.mul_add(ap, b2);
@@ -515,7 +526,11 @@ impl<R: Real> ConductorConsts<R> {
         let den = R::from_f64(2.0) * den_s * den_p;
         // den = 0 only for an index-matched interface at grazing incidence (η = 1, k = 0,
         // c = 0).
-        R::select(den.gt(R::zero()), num_s * (den_p + num_p) / den, R::zero())
+        R::select(
+            den.gt(R::zero()),
+            P::div(num_s * (den_p + num_p), den),
+            R::zero(),
+        )
     }
 }
 
@@ -1191,14 +1206,19 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Dielectric<R, N> {
 /// assert!((seed_gold.eval(1.0)[0] - 0.887).abs() < 5e-4);
 /// # Ok::<(), brdf::Error>(())
 /// ```
+///
+/// `P:` [`SqrtFn`] (default [`ExactSqrt`]; choose with [`Conductor::with_policy`]) takes the
+/// two square roots and two divisions per channel; [`crate::fast::NewtonSqrtRecip`] replaces
+/// them by estimates refined with Newton steps (error in `docs/tradeoffs.md`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Conductor<R, const N: usize> {
+pub struct Conductor<R, const N: usize, P = ExactSqrt> {
     eta: [R; N],
     k: [R; N],
     /// Per channel the constants `p`, `q` and `η²k²` of `ConductorConsts`.
     p: [R; N],
     q: [R; N],
     nk2: [R; N],
+    _p: PhantomData<P>,
 }
 
 impl<S: Scalar, const N: usize> Conductor<S, N> {
@@ -1223,6 +1243,7 @@ impl<S: Scalar, const N: usize> Conductor<S, N> {
             p: c.map(|c| c.p),
             q: c.map(|c| c.q),
             nk2: c.map(|c| c.nk2),
+            _p: PhantomData,
         }
     }
 
@@ -1244,7 +1265,33 @@ impl<S: Scalar, const N: usize> Conductor<S, N> {
     }
 }
 
-impl<R: Real, const N: usize> Conductor<R, N> {
+impl<R: Real, const N: usize, P: SqrtFn> Conductor<R, N, P> {
+    /// The same conductor with its square roots and divisions taken by `P2` (for example
+    /// [`crate::fast::NewtonSqrtRecip`]`<2, 2>`, relative error in `docs/tradeoffs.md`).
+    ///
+    /// ```
+    /// use brdf::fast::NewtonSqrtRecip;
+    /// use brdf::fresnel::{Conductor, FresnelTerm};
+    /// use brdf::ior::Preset;
+    /// let exact = Conductor::<f32, 3>::from_preset(Preset::Gold)?;
+    /// let fast = exact.with_policy::<NewtonSqrtRecip<3, 3>>();
+    /// let (a, b) = (exact.eval(0.3), fast.eval(0.3));
+    /// assert!((0..3).all(|i| (a[i] - b[i]).abs() <= 1e-5 * a[i]));
+    /// # Ok::<(), brdf::Error>(())
+    /// ```
+    #[inline]
+    #[must_use]
+    pub fn with_policy<P2: SqrtFn>(self) -> Conductor<R, N, P2> {
+        Conductor {
+            eta: self.eta,
+            k: self.k,
+            p: self.p,
+            q: self.q,
+            nk2: self.nk2,
+            _p: PhantomData,
+        }
+    }
+
     /// Real part of the IOR per channel.
     pub fn eta(&self) -> [R; N] {
         self.eta
@@ -1256,21 +1303,22 @@ impl<R: Real, const N: usize> Conductor<R, N> {
     }
 }
 
-impl<S: Scalar, const N: usize> Splat for Conductor<S, N> {
-    type On<L: Real> = Conductor<L, N>;
+impl<S: Scalar, const N: usize, P: SqrtFn> Splat for Conductor<S, N, P> {
+    type On<L: Real> = Conductor<L, N, P>;
     #[inline]
-    fn splat<L: Real>(&self) -> Conductor<L, N> {
+    fn splat<L: Real>(&self) -> Conductor<L, N, P> {
         Conductor {
             eta: splat_array(&self.eta),
             k: splat_array(&self.k),
             p: splat_array(&self.p),
             q: splat_array(&self.q),
             nk2: splat_array(&self.nk2),
+            _p: PhantomData,
         }
     }
 }
 
-impl<R: Real, const N: usize> FresnelTerm<R, N> for Conductor<R, N> {
+impl<R: Real, const N: usize, P: SqrtFn> FresnelTerm<R, N> for Conductor<R, N, P> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
         let c = cos_theta_d.abs().min(R::one());
@@ -1286,7 +1334,7 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Conductor<R, N> {
                 q: self.q[i],
                 nk2: self.nk2[i],
             };
-            k.reflectance(c, cos2_theta_d)
+            k.reflectance_with::<P>(c, cos2_theta_d)
         })
     }
 }

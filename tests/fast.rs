@@ -850,3 +850,145 @@ fn lanes_match_scalars() {
     });
     println!("pow_phong worst {w} ulp");
 }
+
+// ---------------------------------------------------------------------------------------
+// recip
+// ---------------------------------------------------------------------------------------
+
+/// Bounds of recip::<N> from the error recurrence `δ₀ = 2e + e²` (`e` the rsqrt estimate's
+/// bound above), `δ_{k+1} = δ_k²`, plus three roundings of `f32` (`3·2⁻²⁴ ≈ 1.8e-7`) once
+/// the recurrence is below that.
+const RECIP_BITS_F32: [f64; 4] = [7.0e-2, 4.9e-3, 2.4e-5, 1.8e-7];
+const RECIP_HW_F32: [f64; 4] = [7.34e-4, 5.4e-7, 1.8e-7, 1.8e-7];
+
+fn recip_worst<R: Real>(n: usize, mut each: impl FnMut(R) -> R) -> f64
+where
+    R::Scalar: Scalar,
+{
+    // Every f32 bit pattern in [1, 4) (the rsqrt start is periodic under x → 4x, its square
+    // under x → 4x as well), then the extremes of the models' denominators.
+    let mut xs: Vec<f64> = (0x3F80_0000u32..0x4080_0000)
+        .step_by(n)
+        .map(|b| f32::from_bits(b) as f64)
+        .collect();
+    xs.extend([f32::MIN_POSITIVE as f64, 1e-30, 1e30, 1e36, 0.3, 7.0]);
+    let mut w = 0.0f64;
+    for chunk in xs.chunks(R::LANES) {
+        let x = R::from_fn(|i| <R::Scalar as Scalar>::of(chunk[i.min(chunk.len() - 1)]));
+        let y = each(x);
+        for (i, &xd) in chunk.iter().enumerate() {
+            let yd: f64 = y.lane(i).into();
+            w = w.max((yd * xd - 1.0).abs());
+        }
+    }
+    w
+}
+
+/// `fast::recip::<N>` within the bound of its recurrence on every `f32` in [1, 4) and at the
+/// extremes, on the bit-trick start (`f32`, `F32Fma`: what the batch kernels run) and the
+/// hardware start (`f32` lanes); finite below the normal range.
+#[test]
+fn recip_within_bounds() {
+    use brdf::real::F32Fma;
+    macro_rules! row {
+        ($t:ty, $stride:expr, $bounds:expr) => {{
+            let w = [
+                recip_worst::<$t>($stride, fast::recip::<0, $t>),
+                recip_worst::<$t>($stride, fast::recip::<1, $t>),
+                recip_worst::<$t>($stride, fast::recip::<2, $t>),
+                recip_worst::<$t>($stride, fast::recip::<3, $t>),
+            ];
+            println!(
+                "recip {:>6}: N=0..3 {:?}",
+                stringify!($t),
+                w.map(|v| format!("{v:.3e}"))
+            );
+            for n in 0..4 {
+                assert!(w[n] <= $bounds[n], "{} N={n}: {:e}", stringify!($t), w[n]);
+            }
+        }};
+    }
+    row!(f32, 1, RECIP_BITS_F32);
+    row!(F32Fma, 1, RECIP_BITS_F32);
+    row!(f32x8, 3, RECIP_HW_F32);
+    row!(f32x16, 3, RECIP_HW_F32);
+    for x in [0.0f32, 1e-40] {
+        assert!(fast::recip::<3, f32>(x).is_finite());
+        assert!(fast::recip::<3, f32x8>(f32x8::splat(x)).lane(2).is_finite());
+    }
+}
+
+/// `NewtonSqrtRecip<3, 3>` on Cook-Torrance GGX and on the exact conductor, against the exact
+/// policy, on `f32` and `F32Fma` (the batch kernels' form): within 16 ULP (`2⁻²⁴·16`
+/// relative, i.e. ~1e-6) over a grid of directions, and 0 below the horizon.
+#[test]
+fn newton_sqrt_recip_models_within_16_ulp() {
+    use brdf::fast::NewtonSqrtRecip;
+    use brdf::fresnel::{Conductor, Schlick};
+    use brdf::ior::Preset;
+    use brdf::masking::{SmithHeightCorrelated, SmithSeparable};
+    use brdf::models::CookTorrance;
+    use brdf::ndf::GgxIsotropic;
+    use brdf::real::{F32Fma, Splat};
+    use brdf::{Brdf, Vec3};
+    type Fast = NewtonSqrtRecip<3, 3>;
+    let bound = 16.0 * f64::from(f32::EPSILON) / 2.0;
+    let dir = |t: f32, p: f32| Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos());
+    fn worst<const N: usize, R: Real<Scalar = f32, Mask = bool>>(
+        a: &impl Brdf<R, N>,
+        b: &impl Brdf<R, N>,
+        pairs: &[(Vec3<f32>, Vec3<f32>)],
+    ) -> f64 {
+        let mut w = 0.0f64;
+        for &(i, o) in pairs {
+            let v = |d: Vec3<f32>| Vec3::new(R::splat(d.x), R::splat(d.y), R::splat(d.z));
+            let (x, y) = (a.eval(v(i), v(o)), b.eval(v(i), v(o)));
+            for c in 0..N {
+                let (x, y) = (f64::from(x[c].lane(0)), f64::from(y[c].lane(0)));
+                assert!(y.is_finite());
+                if x == 0.0 {
+                    assert_eq!(y, 0.0);
+                } else {
+                    w = w.max((y / x - 1.0).abs());
+                }
+            }
+        }
+        w
+    }
+    let mut pairs = Vec::new();
+    for a in 0..24 {
+        for b in 0..24 {
+            for p in 0..8 {
+                let ti = -0.05 + 1.62 * a as f32 / 23.0;
+                let to = -0.05 + 1.62 * b as f32 / 23.0;
+                pairs.push((dir(ti, 0.0), dir(to, 0.8 * p as f32)));
+            }
+        }
+    }
+    for alpha in [0.01f32, 0.3, 1.0] {
+        let ggx = CookTorrance::new(
+            GgxIsotropic::<f32>::new(alpha).unwrap(),
+            Schlick::<f32, 1>::new([0.04]).unwrap(),
+            SmithHeightCorrelated,
+        );
+        let fast = ggx.with_sqrt::<Fast>();
+        let gold = Conductor::<f32, 3>::from_preset(Preset::Gold).unwrap();
+        let rough = CookTorrance::new(GgxIsotropic::<f32>::new(alpha).unwrap(), gold, SmithSeparable);
+        let rough_fast = CookTorrance::new(
+            GgxIsotropic::<f32>::new(alpha).unwrap(),
+            gold.with_policy::<Fast>(),
+            SmithSeparable,
+        )
+        .with_sqrt::<Fast>();
+        let w = [
+            worst::<1, f32>(&ggx, &fast, &pairs),
+            worst::<1, F32Fma>(&ggx.splat::<F32Fma>(), &fast.splat::<F32Fma>(), &pairs),
+            worst::<3, f32>(&rough, &rough_fast, &pairs),
+            worst::<3, F32Fma>(&rough.splat::<F32Fma>(), &rough_fast.splat::<F32Fma>(), &pairs),
+        ];
+        println!("alpha {alpha}: GGX f32, F32Fma; conductor f32, F32Fma: {:?}", w.map(|v| format!("{v:.3e}")));
+        for v in w {
+            assert!(v <= bound, "alpha {alpha}: {v:e} > {bound:e}");
+        }
+    }
+}

@@ -123,15 +123,20 @@ echo "== Mitsuba roughconductor eval: $N pairs, $REPS repetitions"
 "$py" "$PEERS" eval --variant "$VARIANT" --alpha "$ALPHA" --pairs "$PAIRS" --reps "$REPS" \
     --warmup "$WARMUP" --out "$WORK/mitsuba-eval.bin" --timing "$WORK/mitsuba-eval.json"
 STATUS=0
-# GgxIsotropic: the crate's isotropic GGX type; ggx: its anisotropy-capable Ggx (as Mitsuba's).
-for NDF in isotropic ggx; do
-    echo "== brdf batch::eval ($NDF): $N pairs, $REPS repetitions"
-    "$BIN" --pairs "$PAIRS" --alpha "$ALPHA" --eta "$ETA" --k "$K" --ndf "$NDF" --reps "$REPS" \
-        --warmup "$WARMUP" --values "$WORK/brdf-eval-$NDF.bin" --timing "$WORK/brdf-eval-$NDF.json"
-    echo "== values ($NDF)"
+# GgxIsotropic: the crate's isotropic GGX type; ggx: its anisotropy-capable Ggx (as Mitsuba's);
+# -newton: the same with brdf::fast::NewtonSqrtRecip<3, 3> (square roots and divisions by
+# refined estimates, within a few ULP of the exact policy).
+for V in isotropic ggx isotropic-newton ggx-newton; do
+    NDF=${V%-newton}
+    POLICY=exact
+    [ "$V" = "$NDF" ] || POLICY=newton
+    echo "== brdf batch::eval ($V): $N pairs, $REPS repetitions"
+    "$BIN" --pairs "$PAIRS" --alpha "$ALPHA" --eta "$ETA" --k "$K" --ndf "$NDF" --policy "$POLICY" \
+        --reps "$REPS" --warmup "$WARMUP" --values "$WORK/brdf-eval-$V.bin" --timing "$WORK/brdf-eval-$V.json"
+    echo "== values ($V)"
     "$py" "$PEERS" compare --pairs "$PAIRS" --mitsuba "$WORK/mitsuba-eval.bin" \
-        --brdf "$WORK/brdf-eval-$NDF.bin" --workload "$WORK/workload.json" --tolerance "$TOLERANCE" \
-        --out "$WORK/compare-$NDF.json" || STATUS=1
+        --brdf "$WORK/brdf-eval-$V.bin" --workload "$WORK/workload.json" --tolerance "$TOLERANCE" \
+        --out "$WORK/compare-$V.json" || STATUS=1
 done
 
 if [ "$SAMPLE" = 1 ]; then
@@ -149,8 +154,11 @@ import json, os, sys
 work, cpu, family, llvm, sample, brdf = sys.argv[1:]
 load = lambda name: json.load(open(os.path.join(work, name)))
 w, m = load("workload.json"), load("mitsuba-eval.json")
+VARIANTS = (("isotropic", "GgxIsotropic"), ("ggx", "Ggx"),
+            ("isotropic-newton", "GgxIsotropic, NewtonSqrtRecip<3,3>"),
+            ("ggx-newton", "Ggx, NewtonSqrtRecip<3,3>"))
 b, c = {}, {}
-for ndf in ("isotropic", "ggx"):
+for ndf, _ in VARIANTS:
     b[ndf], c[ndf] = load(f"brdf-eval-{ndf}.json"), load(f"compare-{ndf}.json")
 n = m["n"]
 rate = lambda s: n / s / 1e6
@@ -164,18 +172,18 @@ jit = "loaded from Dr.Jit's disk cache" if m["compile_ms"] == 0 else f"{m['compi
 print(f"  Mitsuba {w['mitsuba']}, Dr.Jit {w['drjit']}, {w['variant']}, {w['threads']} thread "
       f"(process CPU / wall {m['cpu_per_wall']:.2f}), {llvm}; JIT compilation ({jit}) excluded")
 print(f"  {brdf}, release build")
-print(f"  {'M evaluations/s':40} {'median':>8} {'best':>8}   ({m['reps']} repetitions)")
+print(f"  {'M evaluations/s':48} {'median':>8} {'best':>8}   ({m['reps']} repetitions)")
 rows = [("Mitsuba, per call (trace + kernel)", m["wall_median_s"], m["wall_best_s"]),
         ("Mitsuba, kernel alone", m["kernel_median_s"], m["kernel_best_s"])]
-for ndf, name in (("isotropic", "GgxIsotropic"), ("ggx", "Ggx")):
-    rows.append((f"brdf batch::eval, {name} ({b[ndf]['isa']})", b[ndf]["median_s"], b[ndf]["best_s"]))
+for ndf, name in VARIANTS:
+    rows.append((f"brdf, {name} ({b[ndf]['isa']})", b[ndf]["median_s"], b[ndf]["best_s"]))
 for name, med, best in rows:
-    print(f"  {name:40} {rate(med):8.1f} {rate(best):8.1f}")
-for ndf, name in (("isotropic", "GgxIsotropic"), ("ggx", "Ggx")):
+    print(f"  {name:48} {rate(med):8.1f} {rate(best):8.1f}")
+for ndf, name in VARIANTS:
     t = b[ndf]["median_s"]
     print(f"  ratio brdf ({name}) / Mitsuba, medians: {m['wall_median_s'] / t:.2f}x per call, "
           f"{m['kernel_median_s'] / t:.2f}x against the kernel alone")
-for ndf, name in (("isotropic", "GgxIsotropic"), ("ggx", "Ggx")):
+for ndf, name in VARIANTS:
     e = c[ndf]
     print(f"  values ({name}): max relative error {e['max_rel_error']:.2e} (99.9 % below "
           f"{e['p999_rel_error']:.2e}, mean {e['mean_rel_error']:.2e}); against f64: Mitsuba "

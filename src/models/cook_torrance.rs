@@ -122,7 +122,7 @@ impl<R: Real, D: Ndf<R>, F, G: Masking<R, D>, S: SqrtFn> CookTorrance<R, D, F, G
         // use `wm`, and then its normalization is not computed at all.
         let (dn, dd) = self.ndf.d_fraction(wm, h, len2);
         let (vn, vd) = self.masking.visibility_fraction(&self.ndf, wi, wo, wm);
-        let dv = (dn * vn) / (dd * vd).max(R::from_f64(1e-30));
+        let dv = S::div(dn * vn, (dd * vd).max(R::from_f64(1e-30)));
         (cos_d, cos2_d, R::select(m, dv, R::zero()))
     }
 }

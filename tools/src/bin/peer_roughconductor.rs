@@ -23,6 +23,7 @@ use std::time::Instant;
 use std::{fs, process};
 
 use brdf::batch::{self, BatchBrdf, Directions, Isa};
+use brdf::fast::NewtonSqrtRecip;
 use brdf::fresnel::Conductor;
 use brdf::masking::SmithSeparable;
 use brdf::models::{CookTorrance, Properties};
@@ -59,11 +60,14 @@ impl<B: Splat> Splat for TimesCosThetaI<B> {
 }
 
 const USAGE: &str = "usage: peer_roughconductor --pairs FILE --values OUT --timing OUT.json \\
-    --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--reps N] [--warmup N]
+    --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--policy exact|newton]
+    [--reps N] [--warmup N]
 
 Times brdf::batch::eval on Mitsuba's roughconductor workload over the pairs of FILE (written
 by benches/peers/peers.py gen), writes the values (3 channels) to OUT and the timing to
-OUT.json. Run by benches/peers/run.sh.";
+OUT.json. --policy newton takes the half vector, the final division and the conductor's
+square roots and divisions by brdf::fast::NewtonSqrtRecip<3, 3> (default: exact). Run by
+benches/peers/run.sh.";
 
 /// The command line.
 struct Args {
@@ -74,6 +78,7 @@ struct Args {
     eta: [f32; 3],
     k: [f32; 3],
     ndf: String,
+    policy: String,
     reps: usize,
     warmup: usize,
 }
@@ -100,7 +105,7 @@ fn rgb(s: &str) -> [f32; 3] {
 fn args() -> Args {
     let a = brdf_tools::Args::parse(
         &[
-            "--pairs", "--values", "--timing", "--alpha", "--eta", "--k", "--ndf", "--reps",
+            "--pairs", "--values", "--timing", "--alpha", "--eta", "--k", "--ndf", "--policy", "--reps",
             "--warmup",
         ],
         &[],
@@ -118,6 +123,7 @@ fn args() -> Args {
         eta: rgb(required("--eta")),
         k: rgb(required("--k")),
         ndf: a.value("--ndf").unwrap_or("isotropic").into(),
+        policy: a.value("--policy").unwrap_or("exact").into(),
         reps: a.value("--reps").map_or(1000, number),
         warmup: a.value("--warmup").map_or(20, number),
     };
@@ -199,27 +205,46 @@ fn main() {
     let wo = Directions::new(&p[3], &p[4], &p[5]);
     let mut out = [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]];
     let gold = Conductor::<f32, 3>::new(a.eta, a.k).unwrap_or_else(|e| fail(e));
-    let mut times = match a.ndf.as_str() {
-        "isotropic" => {
+    let newton = match a.policy.as_str() {
+        "exact" => false,
+        "newton" => true,
+        other => fail(format!("--policy {other:?}: expected exact or newton")),
+    };
+    type Fast = NewtonSqrtRecip<3, 3>;
+    let mut times = match (a.ndf.as_str(), newton) {
+        ("isotropic", false) => {
             let d = GgxIsotropic::<f32>::new(a.alpha).unwrap_or_else(|e| fail(e));
             let m = TimesCosThetaI(CookTorrance::new(d, gold, SmithSeparable));
             time_eval(&m, wi, wo, &mut out, &a)
         }
-        "ggx" => {
+        ("isotropic", true) => {
+            let d = GgxIsotropic::<f32>::new(a.alpha).unwrap_or_else(|e| fail(e));
+            let fast = gold.with_policy::<Fast>();
+            let m = TimesCosThetaI(CookTorrance::new(d, fast, SmithSeparable).with_sqrt::<Fast>());
+            time_eval(&m, wi, wo, &mut out, &a)
+        }
+        ("ggx", false) => {
             let d = Ggx::<f32>::anisotropic(a.alpha, a.alpha).unwrap_or_else(|e| fail(e));
             let m = TimesCosThetaI(CookTorrance::new(d, gold, SmithSeparable));
             time_eval(&m, wi, wo, &mut out, &a)
         }
-        other => fail(format!("--ndf {other:?}: expected isotropic or ggx")),
+        ("ggx", true) => {
+            let d = Ggx::<f32>::anisotropic(a.alpha, a.alpha).unwrap_or_else(|e| fail(e));
+            let fast = gold.with_policy::<Fast>();
+            let m = TimesCosThetaI(CookTorrance::new(d, fast, SmithSeparable).with_sqrt::<Fast>());
+            time_eval(&m, wi, wo, &mut out, &a)
+        }
+        (other, _) => fail(format!("--ndf {other:?}: expected isotropic or ggx")),
     };
     write_values(&a.values, &out);
     times.sort_by(f64::total_cmp);
     let median = times[times.len() / 2];
     let json = format!(
-        "{{\n \"n\": {n},\n \"isa\": \"{:?}\",\n \"ndf\": \"{}\",\n \"reps\": {},\n \
+        "{{\n \"n\": {n},\n \"isa\": \"{:?}\",\n \"ndf\": \"{}\",\n \"policy\": \"{}\",\n \"reps\": {},\n \
          \"median_s\": {median:e},\n \"best_s\": {:e}\n}}\n",
         Isa::detect(),
         a.ndf,
+        a.policy,
         a.reps,
         times[0],
     );
