@@ -19,6 +19,7 @@
 use std::hint::black_box;
 
 use brdf::batch::{self, Directions, Isa, Pipelined};
+use brdf::fast::NewtonSqrtRecip;
 use brdf::fresnel::{Conductor, Schlick};
 use brdf::masking::{SmithHeightCorrelated, SmithSeparable};
 use brdf::models::CookTorrance;
@@ -281,6 +282,17 @@ fn bench_ggx_schlick(c: &mut Criterion) {
     bench_isas(&mut g, "batch", batch::eval_with, &ct, &wi, &wo, &mut out1);
     let piped = batch::eval_pipelined_with;
     bench_isas(&mut g, "batch_pipelined", piped, &ct, &wi, &wo, &mut out1);
+    // The half vector and the final division by refined estimates (issue 14).
+    let newton = ct.with_sqrt::<NewtonSqrtRecip<3, 3>>();
+    bench_isas(
+        &mut g,
+        "batch_newton_sqrt_recip_3_3",
+        batch::eval_with,
+        &newton,
+        &wi,
+        &wo,
+        &mut out1,
+    );
     // The anisotropy-capable `Ggx` type with αx = αy: the price of not specializing.
     let aniso = CookTorrance::new(
         Ggx::<f32>::new(0.3).unwrap(),
@@ -343,6 +355,21 @@ fn bench_rough_conductor(c: &mut Criterion) {
     bench_isas(&mut g, "batch", batch::eval_with, &m, &wi, &wo, &mut out);
     let piped = batch::eval_pipelined_with;
     bench_isas(&mut g, "batch_pipelined", piped, &m, &wi, &wo, &mut out);
+    // Every square root and division of the geometry and the conductor by refined estimates.
+    type Fast = NewtonSqrtRecip<3, 3>;
+    let fast = TimesCos(
+        CookTorrance::new(m.0.ndf, m.0.fresnel.with_policy::<Fast>(), SmithSeparable)
+            .with_sqrt::<Fast>(),
+    );
+    bench_isas(
+        &mut g,
+        "batch_newton_sqrt_recip_3_3",
+        batch::eval_with,
+        &fast,
+        &wi,
+        &wo,
+        &mut out,
+    );
     g.finish();
 }
 

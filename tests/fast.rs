@@ -973,7 +973,11 @@ fn newton_sqrt_recip_models_within_16_ulp() {
         );
         let fast = ggx.with_sqrt::<Fast>();
         let gold = Conductor::<f32, 3>::from_preset(Preset::Gold).unwrap();
-        let rough = CookTorrance::new(GgxIsotropic::<f32>::new(alpha).unwrap(), gold, SmithSeparable);
+        let rough = CookTorrance::new(
+            GgxIsotropic::<f32>::new(alpha).unwrap(),
+            gold,
+            SmithSeparable,
+        );
         let rough_fast = CookTorrance::new(
             GgxIsotropic::<f32>::new(alpha).unwrap(),
             gold.with_policy::<Fast>(),
@@ -984,9 +988,16 @@ fn newton_sqrt_recip_models_within_16_ulp() {
             worst::<1, f32>(&ggx, &fast, &pairs),
             worst::<1, F32Fma>(&ggx.splat::<F32Fma>(), &fast.splat::<F32Fma>(), &pairs),
             worst::<3, f32>(&rough, &rough_fast, &pairs),
-            worst::<3, F32Fma>(&rough.splat::<F32Fma>(), &rough_fast.splat::<F32Fma>(), &pairs),
+            worst::<3, F32Fma>(
+                &rough.splat::<F32Fma>(),
+                &rough_fast.splat::<F32Fma>(),
+                &pairs,
+            ),
         ];
-        println!("alpha {alpha}: GGX f32, F32Fma; conductor f32, F32Fma: {:?}", w.map(|v| format!("{v:.3e}")));
+        println!(
+            "alpha {alpha}: GGX f32, F32Fma; conductor f32, F32Fma: {:?}",
+            w.map(|v| format!("{v:.3e}"))
+        );
         for v in w {
             assert!(v <= bound, "alpha {alpha}: {v:e} > {bound:e}");
         }

@@ -105,8 +105,8 @@ fn rgb(s: &str) -> [f32; 3] {
 fn args() -> Args {
     let a = brdf_tools::Args::parse(
         &[
-            "--pairs", "--values", "--timing", "--alpha", "--eta", "--k", "--ndf", "--policy", "--reps",
-            "--warmup",
+            "--pairs", "--values", "--timing", "--alpha", "--eta", "--k", "--ndf", "--policy",
+            "--reps", "--warmup",
         ],
         &[],
         USAGE,

@@ -44,7 +44,7 @@ OPTIONS:
 use std::time::Instant;
 
 use brdf::batch;
-use brdf::fast::{FastPow, NewtonSqrt};
+use brdf::fast::{FastPow, NewtonSqrt, NewtonSqrtRecip};
 use brdf::fresnel::{self, Conductor, Dielectric, F82Tint, FresnelTerm, Schlick};
 use brdf::masking::{
     HammonApprox, Implicit, Kelemen, Masking, SchlickGgx, SmithHeightCorrelated, SmithSeparable,
@@ -1206,6 +1206,11 @@ fn fast_pow_models_table() -> Table {
     }
 }
 
+/// A policy type as written in the source (`stringify!` may space its generics).
+fn policy_name(s: &str) -> String {
+    s.replace(" <", "<").replace("< ", "<").replace(" >", ">")
+}
+
 /// The half vector through `fast::NewtonSqrt<N>` (`with_sqrt`) against `ExactSqrt`: error
 /// in f32 against the exact model in f64, cost of the scalar f32 `eval` loop and of the
 /// dispatched batch path, each against the same model with `ExactSqrt`.
@@ -1226,15 +1231,15 @@ fn sqrt_models_table() -> Table {
     type P = (Vec3<f32>, Vec3<f32>);
     // One model: its exact and Newton forms at f32, the exact one at f64.
     macro_rules! rows_for {
-        ($label:expr, $exact32:expr, $exact64:expr, [$($n:literal),*]) => {{
+        ($label:expr, $exact32:expr, $exact64:expr, [$($p:ty),*]) => {{
             let exact32 = $exact32;
             let exact64 = $exact64;
             let r = model_error(&format!("{}, `ExactSqrt` f32", $label), "`ExactSqrt` f64", &exact32, &exact64, d);
             rows.push(r);
             $({
-                let fast32 = exact32.with_sqrt::<NewtonSqrt<$n>>();
+                let fast32 = exact32.with_sqrt::<$p>();
                 let mut r = model_error(
-                    &format!("{}, `NewtonSqrt<{}>` f32", $label, $n),
+                    &format!("{}, `{}` f32", $label, policy_name(stringify!($p))),
                     "`ExactSqrt` f64",
                     &fast32,
                     &exact64,
@@ -1253,7 +1258,7 @@ fn sqrt_models_table() -> Table {
                     || batch::eval_with(isa, black_box(&fast32), wi, wo, [&mut ob]).unwrap(),
                 );
                 rows.push(Row {
-                    name: format!("{}, `NewtonSqrt<{}>`, batch ({isa:?})", $label, $n),
+                    name: format!("{}, `{}`, batch ({isa:?})", $label, policy_name(stringify!($p))),
                     reference: "same, `ExactSqrt` batch".into(),
                     domain: "cost only (error: the row above)".into(),
                     abs: 0.0,
@@ -1277,7 +1282,7 @@ fn sqrt_models_table() -> Table {
             Schlick::<f64, 1>::new([0.04]).unwrap(),
             SmithHeightCorrelated,
         ),
-        [1, 2, 3]
+        [NewtonSqrt<1>, NewtonSqrt<2>, NewtonSqrt<3>, NewtonSqrtRecip<3, 3>]
     );
     rows_for!(
         "Cook-Torrance Beckmann α = 0.3, dielectric η = 1.5, separable Smith",
@@ -1291,21 +1296,22 @@ fn sqrt_models_table() -> Table {
             Dielectric::<f64>::new(1.5).unwrap(),
             SmithSeparable,
         ),
-        [2, 3]
+        [NewtonSqrt<2>, NewtonSqrt<3>]
     );
     for s in [16.0, 256.0, 1e4] {
         rows_for!(
             format!("engine Blinn-Phong s = {s}"),
             BlinnPhongClassic::<f32, 1>::new([0.2], 1.0, [0.04], s as f32).unwrap(),
             BlinnPhongClassic::<f64, 1>::new([0.2], 1.0, [0.04], s).unwrap(),
-            [2, 3]
+            [NewtonSqrt<2>, NewtonSqrt<3>]
         );
     }
     Table {
         title: "Fast half-vector normalization inside a model: `with_sqrt::<NewtonSqrt<N>>`",
         note: "`|wi + wo|` and `1/|wi + wo|` by `fast::rsqrt::<N>` (bit-trick start, N Newton \
                steps) instead of a square root and a division, in f32, against the exact \
-               model in f64 on the direction set of the models table. Worst at: the maximum \
+               model in f64 on the direction set of the models table; `NewtonSqrtRecip<3, 3>` also \
+               takes the final division by `fast::recip::<3>`. Worst at: the maximum \
                relative error. Cost: the scalar f32 `eval` loop, and `batch::eval_with` on the \
                dispatched instruction set, each against the same model with `ExactSqrt`."
             .into(),
