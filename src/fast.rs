@@ -771,7 +771,7 @@ impl<const STEPS: usize> RecipFn for NewtonRecip<STEPS> {
 /// `with_sqrt::<NewtonSqrtRecip<3, 3>>()` evaluates GGX without a square root or division
 /// outside its masking terms, and a [`crate::fresnel::Conductor::with_policy`] conductor
 /// without any. `<3, 3>` stays within `16·2⁻²⁴ ≈ 9.5·10⁻⁷` relative of the exact policy on
-/// these models (tested on f32 and F32Fma: measured ≤ 7.1·10⁻⁷).
+/// these models (tested on f32 and `F32Fma`: measured ≤ 7.1·10⁻⁷).
 ///
 /// Speed: on an Intel Xeon with AVX-512 (Sapphire Rapids class) it is slower than
 /// [`ExactSqrt`] in the [`crate::batch`] kernels (README, Performance): three Newton steps
