@@ -730,44 +730,8 @@ pub fn recip<const N: usize, R: Real>(x: R) -> R {
     y
 }
 
-/// How a model divides by its denominators (a sum of positive terms, such as Cook-Torrance's
-/// `dd·vd` or the conductor Fresnel's `2·den_s·den_p`), chosen at compile time.
-///
-/// * [`ExactRecip`]: the correctly rounded `n / d` (a division).
-/// * [`NewtonRecip`]`<STEPS>`: `n · `[`recip`]`::<STEPS>(d)` (multiplies and adds only).
-///
-/// Used through [`NewtonSqrtRecip`], the [`SqrtFn`] that carries it into
-/// [`crate::models::CookTorrance`].
-pub trait RecipFn: Copy + core::fmt::Debug + Default + Send + Sync + 'static {
-    /// `n / d` for positive normal `d`.
-    fn div<R: Real>(n: R, d: R) -> R;
-}
-
-/// [`RecipFn`] through the correctly rounded division.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct ExactRecip;
-
-impl RecipFn for ExactRecip {
-    #[inline(always)]
-    fn div<R: Real>(n: R, d: R) -> R {
-        n / d
-    }
-}
-
-/// [`RecipFn`] through [`recip`]`::<STEPS>`: `n / d ≈ n · recip(d)` (relative error: the
-/// bound of `recip::<STEPS>` plus one rounding; `STEPS = 3` for a few ULP in `f32`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct NewtonRecip<const STEPS: usize>;
-
-impl<const STEPS: usize> RecipFn for NewtonRecip<STEPS> {
-    #[inline(always)]
-    fn div<R: Real>(n: R, d: R) -> R {
-        n * recip::<STEPS, R>(d)
-    }
-}
-
 /// [`SqrtFn`] with the half vector taken by [`rsqrt`]`::<SQRT>` (as [`NewtonSqrt`]) and the
-/// model's final division by [`recip`]`::<RECIP>` ([`NewtonRecip`]): a Cook-Torrance
+/// model's final division `n / d` as `n · `[`recip`]`::<RECIP>(d)`: a Cook-Torrance
 /// `with_sqrt::<NewtonSqrtRecip<3, 3>>()` evaluates GGX without a square root or division
 /// outside its masking terms, and a [`crate::fresnel::Conductor::with_policy`] conductor
 /// without any. `<3, 3>` stays within `16·2⁻²⁴ ≈ 9.5·10⁻⁷` relative of the exact policy on
@@ -787,6 +751,6 @@ impl<const SQRT: usize, const RECIP: usize> SqrtFn for NewtonSqrtRecip<SQRT, REC
     }
     #[inline(always)]
     fn div<R: Real>(n: R, d: R) -> R {
-        NewtonRecip::<RECIP>::div(n, d)
+        n * recip::<RECIP, R>(d)
     }
 }

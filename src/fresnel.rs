@@ -1267,7 +1267,7 @@ impl<S: Scalar, const N: usize> Conductor<S, N> {
 
 impl<R: Real, const N: usize, P: SqrtFn> Conductor<R, N, P> {
     /// The same conductor with its square roots and divisions taken by `P2` (for example
-    /// [`crate::fast::NewtonSqrtRecip`]`<2, 2>`, relative error in `docs/tradeoffs.md`).
+    /// [`crate::fast::NewtonSqrtRecip`]`<3, 3>`, relative error in `docs/tradeoffs.md`).
     ///
     /// ```
     /// use brdf::fast::NewtonSqrtRecip;

@@ -291,10 +291,73 @@ fn material_chi2() {
     at_all_angles("material sum of 3 with a layer", &sum, 25.0, true);
 }
 
+/// Lambert plus a GGX Cook-Torrance with coloured Schlick: the mixture picks the specular
+/// lobe with probability `F̄(cos θo) / (F̄(cos θo) + ρ̄_d)`, which varies with the view angle.
+type Plastic = Sum<
+    Lambert<f64, 3>,
+    CookTorrance<f64, GgxIsotropic<f64>, Schlick<f64, 3>, SmithHeightCorrelated>,
+>;
+
+fn plastic() -> Plastic {
+    let spec = CookTorrance::new(
+        GgxIsotropic::new(0.3).unwrap(),
+        Schlick::new([0.04, 0.2, 0.9]).unwrap(),
+        SmithHeightCorrelated,
+    );
+    Sum::new(Lambert::new([0.5, 0.4, 0.3]).unwrap(), spec)
+}
+
+#[test]
+fn chi2_lambert_plus_cook_torrance() {
+    at_all_angles("lambert + ggx cook-torrance", &plastic(), 35.0, false);
+}
+
+/// Cook-Torrance's albedo estimate is the channel mean of Schlick's `F(cos θo)` (computed here
+/// by `fresnel::schlick`), and `Sum`'s density is the mixture of the two lobes' densities
+/// weighted by the estimates.
+#[test]
+fn cook_torrance_estimate_is_the_mean_fresnel() {
+    let sum = plastic();
+    let f0 = [0.04, 0.2, 0.9];
+    let mut rng = Rng::new(7);
+    for theta in [0.0, 30.0, 60.0, 85.0, 89.9] {
+        let wo = wo_at(theta, 10.0);
+        let mean_f = f0
+            .iter()
+            .map(|&f| brdf::fresnel::schlick(f, wo.z))
+            .sum::<f64>()
+            / 3.0;
+        let e_spec = sum.b.albedo_estimate(wo);
+        assert!(
+            (e_spec - mean_f).abs() <= 1e-12,
+            "θo = {theta}: {e_spec} vs {mean_f}"
+        );
+        let e_diff = sum.a.albedo_estimate(wo);
+        for _ in 0..64 {
+            let s = sum.sample(wo, rng.u3());
+            if !s.valid {
+                continue;
+            }
+            let wi = s.wi;
+            let mixture =
+                (e_diff * sum.a.pdf(wo, wi) + e_spec * sum.b.pdf(wo, wi)) / (e_diff + e_spec);
+            let pdf = sum.pdf(wo, wi);
+            assert!(
+                (pdf - mixture).abs() <= 1e-12 * mixture.max(1.0),
+                "θo = {theta}, wi = {wi:?}: {pdf} vs {mixture}"
+            );
+        }
+    }
+    // Normal view: mean F0; grazing view: towards 1.
+    let normal = sum.b.albedo_estimate(wo_at(0.0, 0.0));
+    assert!((normal - (0.04 + 0.2 + 0.9) / 3.0).abs() < 1e-12);
+    assert!(sum.b.albedo_estimate(wo_at(89.9, 0.0)) > 0.99);
+}
+
 /// Keeps [`TESTS`] honest: count the `check_chi2` calls above.
 #[test]
 fn chi2_budget() {
-    let calls = 9 * 2 * ANGLES.len() + 1 + 1 + ANGLES.len();
+    let calls = 9 * 2 * ANGLES.len() + 1 + 1 + ANGLES.len() + ANGLES.len();
     assert!(
         calls <= TESTS,
         "{calls} χ² configurations > TESTS = {TESTS}"

@@ -6,6 +6,8 @@ Subcommands:
   eval     time Mitsuba's roughconductor `eval` on the pairs, write its values
   sample   time Mitsuba's roughconductor `sample` on the pairs, write its results
   compare  check the crate's values against Mitsuba's, print the summary
+  compare-sample  check both sides' samples against an f64 reference (density and weight at
+           the drawn direction) and their mean weights against each other (4 sigma)
 
 File formats (little-endian; written here and read by tools/src/bin/peer_roughconductor.rs):
   pairs:  b"BRDFPR01", u64 N, then f32 arrays of N each:
@@ -323,6 +325,72 @@ def cmd_compare(a):
                  f"{zero_mismatch} zero/non-zero mismatches, finite: {finite})")
 
 
+def sample_reference(p, wi, alpha, eta, k):
+    """f64 density and weight of visible-normal sampling at the drawn directions wi (3 x N):
+    pdf = D(h) G1(wo) / (4 wo.z) (Heitz 2018; spherical caps draw the same density) and
+    weight = f cos(theta_i) / pdf, from `reference` with wi replaced."""
+    q = dict(p)
+    q["wi_x"], q["wi_y"], q["wi_z"] = wi
+    wo = np.array([p["wo_x"], p["wo_y"], p["wo_z"]], dtype=np.float64)
+    wi = np.asarray(wi, dtype=np.float64)
+    h = wi + wo
+    h /= np.linalg.norm(h, axis=0)
+    a2 = float(alpha) ** 2
+    d = a2 / (np.pi * ((a2 - 1.0) * h[2] ** 2 + 1.0) ** 2)
+    tan2 = (wo[0] ** 2 + wo[1] ** 2) / wo[2] ** 2
+    g1_wo = 2.0 / (1.0 + np.sqrt(1.0 + a2 * tan2))
+    pdf = d * g1_wo / (4.0 * wo[2])
+    f_cos = reference(q, alpha, eta, k)
+    return pdf, f_cos / pdf
+
+
+def cmd_compare_sample(a):
+    """Samples from different warps of the same uniforms differ one by one, so the check is
+    per side against the f64 reference at its own directions, and the mean weight (the
+    directional albedo averaged over the pairs' wo) between the sides."""
+    p = read_pairs(a.pairs)
+    with open(a.workload) as f:
+        w = json.load(f)
+    result = {}
+    means = {}
+    for name, path in (("mitsuba", a.mitsuba), ("brdf", a.brdf)):
+        v = read_values(path).astype(np.float64)
+        if v.shape[0] != 7:
+            sys.exit(f"{path}: expected 7 arrays (wi, pdf, weight), found {v.shape[0]}")
+        wi, pdf, weight = v[:3], v[3], v[4:]
+        valid = (pdf > 0) & (wi[2] > 0)
+        ref_pdf, ref_w = sample_reference(p, wi[:, valid], w["alpha"], w["eta"], w["k"])
+        e_pdf = rel_error(pdf[valid], ref_pdf)
+        e_w = rel_error(weight[:, valid], ref_w)
+        result[name] = {
+            "valid": float(valid.mean()),
+            "finite": bool(np.isfinite(v).all()),
+            "pdf_max_rel_error": float(e_pdf.max()),
+            "pdf_p999_rel_error": float(np.quantile(e_pdf, 0.999)),
+            "weight_max_rel_error": float(e_w.max()),
+            "weight_p999_rel_error": float(np.quantile(e_w, 0.999)),
+            "mean_weight": [float(x) for x in weight.mean(axis=1)],
+        }
+        means[name] = (weight.mean(axis=1), weight.var(axis=1) / weight.shape[1])
+    (mm, vm), (mb, vb) = means["mitsuba"], means["brdf"]
+    z = (mb - mm) / np.sqrt(vm + vb)
+    result["mean_weight_z"] = [float(x) for x in z]
+    with open(a.out, "w") as f:
+        json.dump(result, f, indent=1)
+    for name in ("mitsuba", "brdf"):
+        r = result[name]
+        print(f"{name}: {100 * r['valid']:.2f} % valid; against f64 at its own directions: pdf "
+              f"max {r['pdf_max_rel_error']:.2e} (99.9 % {r['pdf_p999_rel_error']:.2e}), weight "
+              f"max {r['weight_max_rel_error']:.2e} (99.9 % {r['weight_p999_rel_error']:.2e}); "
+              f"mean weight {', '.join(f'{x:.5f}' for x in r['mean_weight'])}")
+    print(f"mean weight brdf - Mitsuba in standard errors: {', '.join(f'{x:+.2f}' for x in z)}")
+    bad = [n for n in ("mitsuba", "brdf") if not result[n]["finite"]
+           or result[n]["pdf_p999_rel_error"] > a.tolerance
+           or result[n]["weight_p999_rel_error"] > a.tolerance]
+    if bad or (np.abs(z) > 4).any():
+        sys.exit(f"FAIL: samples disagree ({', '.join(bad) or 'mean weights beyond 4 sigma'})")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     sub = ap.add_subparsers(dest="cmd", required=True)
@@ -347,9 +415,16 @@ def main():
     c.add_argument("--workload", required=True)
     c.add_argument("--tolerance", type=float, default=1e-5)
     c.add_argument("--out", required=True)
+    c = sub.add_parser("compare-sample")
+    c.add_argument("--pairs", required=True)
+    c.add_argument("--mitsuba", required=True)
+    c.add_argument("--brdf", required=True)
+    c.add_argument("--workload", required=True)
+    c.add_argument("--tolerance", type=float, default=1e-4)
+    c.add_argument("--out", required=True)
     a = ap.parse_args()
     {"gen": cmd_gen, "workload": cmd_workload, "eval": cmd_eval, "sample": cmd_sample,
-     "compare": cmd_compare}[a.cmd](a)
+     "compare": cmd_compare, "compare-sample": cmd_compare_sample}[a.cmd](a)
 
 
 if __name__ == "__main__":

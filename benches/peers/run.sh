@@ -5,8 +5,11 @@
 #   bash benches/peers/run.sh [N] [--sample]
 #
 #   N         direction pairs (default 65536), drawn with a fixed seed
-#   --sample  also time Mitsuba's `bsdf.sample` on the same workload (the crate half is not
-#             written yet: it prints Mitsuba's throughput only)
+#   --sample  also time sampling: Mitsuba's `bsdf.sample` and the crate's `batch::sample`
+#             (visible normals as Mitsuba, and the crate's default spherical caps) on the same
+#             viewer directions and uniforms; each side's density and weight are checked
+#             against an f64 reference at its own directions, and the mean weights against
+#             each other (within 4 standard errors)
 #
 # Environment: PEERS_REPS (timed repetitions, default: about 2^27 evaluations in all),
 # PEERS_WARMUP (untimed calls first, default 20), PEERS_PYTHON (interpreter for the venv,
@@ -143,6 +146,16 @@ if [ "$SAMPLE" = 1 ]; then
     echo "== Mitsuba roughconductor sample: $N pairs, $REPS repetitions"
     "$py" "$PEERS" sample --variant "$VARIANT" --alpha "$ALPHA" --pairs "$PAIRS" --reps "$REPS" \
         --warmup "$WARMUP" --out "$WORK/mitsuba-sample.bin" --timing "$WORK/mitsuba-sample.json"
+    for ST in vndf caps; do
+        echo "== brdf batch::sample (GgxIsotropic, $ST): $N pairs, $REPS repetitions"
+        "$BIN" --mode sample --strategy "$ST" --pairs "$PAIRS" --alpha "$ALPHA" --eta "$ETA" --k "$K" \
+            --reps "$REPS" --warmup "$WARMUP" --values "$WORK/brdf-sample-$ST.bin" \
+            --timing "$WORK/brdf-sample-$ST.json"
+        echo "== samples ($ST)"
+        "$py" "$PEERS" compare-sample --pairs "$PAIRS" --mitsuba "$WORK/mitsuba-sample.bin" \
+            --brdf "$WORK/brdf-sample-$ST.bin" --workload "$WORK/workload.json" \
+            --out "$WORK/compare-sample-$ST.json" || STATUS=1
+    done
 fi
 
 # --- 5. Summary -------------------------------------------------------------------------------
@@ -190,9 +203,17 @@ for ndf, name in VARIANTS:
           f"{e['mitsuba_vs_f64']['max_rel_error']:.2e}, brdf {e['brdf_vs_f64']['max_rel_error']:.2e}")
 if sample == "1":
     s = load("mitsuba-sample.json")
-    print(f"\nroughconductor sample, Mitsuba only (the crate half comes with its batch sampler):")
-    print(f"  Mitsuba, per call {rate(s['wall_median_s']):.1f} M/s, kernel alone "
-          f"{rate(s['kernel_median_s']):.1f} M/s (medians of {s['reps']})")
+    print(f"\nroughconductor sample, {n} pairs, one thread (M samples/s, medians of {s['reps']}):")
+    print(f"  Mitsuba, per call (trace + kernel) {rate(s['wall_median_s']):8.1f}")
+    print(f"  Mitsuba, kernel alone              {rate(s['kernel_median_s']):8.1f}")
+    for st, name in (("vndf", "visible normals"), ("caps", "spherical caps")):
+        t, e = load(f"brdf-sample-{st}.json"), load(f"compare-sample-{st}.json")
+        print(f"  brdf, GgxIsotropic, {name:15} {rate(t['median_s']):8.1f}   "
+              f"({t['isa']}; {s['wall_median_s'] / t['median_s']:.2f}x per call, "
+              f"{s['kernel_median_s'] / t['median_s']:.2f}x the kernel)")
+        print(f"    mean weight z (brdf - Mitsuba): {', '.join(f'{x:+.2f}' for x in e['mean_weight_z'])}; "
+              f"weight vs f64 (99.9 %): brdf {e['brdf']['weight_p999_rel_error']:.1e}, "
+              f"Mitsuba {e['mitsuba']['weight_p999_rel_error']:.1e}")
 EOF
 if [ "$STATUS" != 0 ]; then
     echo "run.sh: FAIL: the values disagree (see above and $WORK/compare-*.json)" >&2

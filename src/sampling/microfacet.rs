@@ -730,6 +730,13 @@ fn pdf_ct<R: Real, D: Ndf<R>, St: NormalSampler<R, D>>(ndf: &D, wo: Vec3<R>, wi:
     R::select(ok, p, R::zero())
 }
 
+/// A Cook-Torrance lobe's albedo estimate: the channel mean of its Fresnel term at the view
+/// angle, `mean(F(cos θo))` (one body for [`CookTorrance`] and [`Sampled`]).
+#[inline(always)]
+fn fresnel_estimate<R: Real, F: FresnelTerm<R, N>, const N: usize>(fresnel: &F, wo: Vec3<R>) -> R {
+    crate::sampling::lobes::mean(fresnel.eval(wo.z.saturate()))
+}
+
 /// Samples the NDF's default strategy ([`SampleNdf`]) and reflects:
 /// `wi = 2 (wo·wm) wm − wo`, `pdf = pdf_wm / (4 wo·wm)`; the weight in closed form
 /// (`F·G2/G1(wo)` for visible normals) where the strategy has one. Any `F`, `G`, `S`.
@@ -756,7 +763,7 @@ where
     /// the lobe, and any positive estimate keeps the mixture unbiased.
     #[inline(always)]
     fn albedo_estimate(&self, wo: Vec3<R>) -> R {
-        crate::sampling::lobes::mean(self.fresnel.eval(wo.z.saturate()))
+        fresnel_estimate(&self.fresnel, wo)
     }
 }
 
@@ -827,7 +834,7 @@ where
     }
     #[inline(always)]
     fn albedo_estimate(&self, wo: Vec3<R>) -> R {
-        crate::sampling::lobes::mean(self.model.fresnel.eval(wo.z.saturate()))
+        fresnel_estimate(&self.model.fresnel, wo)
     }
 }
 

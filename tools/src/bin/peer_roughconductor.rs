@@ -8,6 +8,13 @@
 //! `f(wi, wo) · wi.z` ([`TimesCosThetaI`]); the pairs file stores `wi` (light) and `wo`
 //! (viewer) in this crate's naming (`benches/peers/peers.py` documents the format).
 //!
+//! `--mode sample` times [`brdf::batch::sample`] instead, on the viewer directions `wo` and
+//! the uniforms `u0, u1` of the pairs file (Mitsuba's `sample2`; `uc` is passed as the third
+//! uniform, which a single lobe ignores), with the visible-normal sampler (`--strategy vndf`,
+//! default, as Mitsuba's `sample_visible`) or the crate's default spherical caps
+//! (`--strategy caps`), and writes `wi` (3 arrays), the density and the weight
+//! `f·cos θi / pdf` (3 arrays) as Mitsuba's `sample` half does.
+//!
 //! `--ndf isotropic` (default) runs `CookTorrance<GgxIsotropic, Conductor<3>, SmithSeparable>`,
 //! `--ndf ggx` the same on the anisotropy-capable `Ggx` (with equal α, as Mitsuba's GGX).
 //! Timing: `--warmup` untimed calls, then `--reps` calls each timed on its own (wall clock);
@@ -22,13 +29,14 @@ use std::io::{Read, Write};
 use std::time::Instant;
 use std::{fs, process};
 
-use brdf::batch::{self, BatchBrdf, Directions, Isa};
+use brdf::batch::{self, BatchBrdf, BatchSample, Directions, Isa, SampleOut};
 use brdf::fast::NewtonSqrtRecip;
 use brdf::fresnel::Conductor;
 use brdf::masking::SmithSeparable;
 use brdf::models::{CookTorrance, Properties};
 use brdf::ndf::{Ggx, GgxIsotropic};
 use brdf::real::Splat;
+use brdf::sampling::{SphericalCaps, VisibleNormals};
 use brdf::{Brdf, Real, Vec3};
 
 const PAIRS_MAGIC: &[u8; 8] = b"BRDFPR01";
@@ -61,13 +69,15 @@ impl<B: Splat> Splat for TimesCosThetaI<B> {
 
 const USAGE: &str = "usage: peer_roughconductor --pairs FILE --values OUT --timing OUT.json \\
     --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--policy exact|newton]
-    [--reps N] [--warmup N]
+    [--mode eval|sample] [--strategy vndf|caps] [--reps N] [--warmup N]
 
 Times brdf::batch::eval on Mitsuba's roughconductor workload over the pairs of FILE (written
 by benches/peers/peers.py gen), writes the values (3 channels) to OUT and the timing to
 OUT.json. --policy newton takes the half vector, the final division and the conductor's
-square roots and divisions by brdf::fast::NewtonSqrtRecip<3, 3> (default: exact). Run by
-benches/peers/run.sh.";
+square roots and divisions by brdf::fast::NewtonSqrtRecip<3, 3> (default: exact).
+--mode sample times brdf::batch::sample on the viewer directions and uniforms of FILE
+(--strategy vndf: visible normals, as Mitsuba; caps: the crate's default spherical caps)
+and writes wi (3 arrays), pdf and the weight (3 arrays). Run by benches/peers/run.sh.";
 
 /// The command line.
 struct Args {
@@ -79,6 +89,8 @@ struct Args {
     k: [f32; 3],
     ndf: String,
     policy: String,
+    mode: String,
+    strategy: String,
     reps: usize,
     warmup: usize,
 }
@@ -105,8 +117,18 @@ fn rgb(s: &str) -> [f32; 3] {
 fn args() -> Args {
     let a = brdf_tools::Args::parse(
         &[
-            "--pairs", "--values", "--timing", "--alpha", "--eta", "--k", "--ndf", "--policy",
-            "--reps", "--warmup",
+            "--pairs",
+            "--values",
+            "--timing",
+            "--alpha",
+            "--eta",
+            "--k",
+            "--ndf",
+            "--policy",
+            "--mode",
+            "--strategy",
+            "--reps",
+            "--warmup",
         ],
         &[],
         USAGE,
@@ -124,6 +146,8 @@ fn args() -> Args {
         k: rgb(required("--k")),
         ndf: a.value("--ndf").unwrap_or("isotropic").into(),
         policy: a.value("--policy").unwrap_or("exact").into(),
+        mode: a.value("--mode").unwrap_or("eval").into(),
+        strategy: a.value("--strategy").unwrap_or("vndf").into(),
         reps: a.value("--reps").map_or(1000, number),
         warmup: a.value("--warmup").map_or(20, number),
     };
@@ -197,6 +221,72 @@ fn time_eval<B: BatchBrdf<3>>(
         .collect()
 }
 
+/// Per-repetition wall times (s) of `batch::sample` over all pairs (viewer directions `wo`,
+/// uniforms `u`), after `warmup` untimed calls; leaves the last samples in `out`
+/// (`wi.x, wi.y, wi.z, pdf, weight r, g, b`).
+fn time_sample<B: BatchSample<3>>(
+    m: &B,
+    wo: Directions<'_>,
+    u: [&[f32]; 3],
+    out: &mut [Vec<f32>; 7],
+    a: &Args,
+) -> Vec<f64>
+where
+    B::Fused: brdf::SampleBrdf<brdf::real::F32Fma, 3>,
+{
+    let run = |out: &mut [Vec<f32>; 7]| {
+        let [x, y, z, pdf, r, g, b] = out;
+        let mut s = SampleOut {
+            x,
+            y,
+            z,
+            pdf,
+            weight: [r, g, b],
+        };
+        batch::sample(black_box(m), black_box(wo), black_box(u), &mut s);
+        black_box(&*out);
+    };
+    for _ in 0..a.warmup {
+        run(out);
+    }
+    (0..a.reps)
+        .map(|_| {
+            let t = Instant::now();
+            run(out);
+            t.elapsed().as_secs_f64()
+        })
+        .collect()
+}
+
+/// `--mode sample`: the Cook-Torrance of the workload sampled with `--strategy`.
+fn sample_mode(a: &Args, p: &[Vec<f32>], gold: Conductor<f32, 3>) -> (Vec<f64>, Vec<Vec<f32>>) {
+    let n = p[0].len();
+    let wo = Directions::new(&p[3], &p[4], &p[5]);
+    // Mitsuba's sample2 is (u0, u1); the crate's microfacet samplers use u[0], u[1] for the
+    // normal (u[2] picks a lobe in mixtures).
+    let u = [&p[7][..], &p[8][..], &p[6][..]];
+    let mut out: [Vec<f32>; 7] = std::array::from_fn(|_| vec![0.0f32; n]);
+    if a.policy != "exact" {
+        fail("--mode sample takes --policy exact only");
+    }
+    macro_rules! run {
+        ($d:expr) => {{
+            let ct = CookTorrance::new($d.unwrap_or_else(|e| fail(e)), gold, SmithSeparable);
+            match a.strategy.as_str() {
+                "vndf" => time_sample(&ct.sampled_with::<VisibleNormals>(), wo, u, &mut out, a),
+                "caps" => time_sample(&ct.sampled_with::<SphericalCaps>(), wo, u, &mut out, a),
+                other => fail(format!("--strategy {other:?}: expected vndf or caps")),
+            }
+        }};
+    }
+    let times = match a.ndf.as_str() {
+        "isotropic" => run!(GgxIsotropic::<f32>::new(a.alpha)),
+        "ggx" => run!(Ggx::<f32>::anisotropic(a.alpha, a.alpha)),
+        other => fail(format!("--ndf {other:?}: expected isotropic or ggx")),
+    };
+    (times, out.into())
+}
+
 fn main() {
     let a = args();
     let p = read_pairs(&a.pairs);
@@ -205,48 +295,65 @@ fn main() {
     let wo = Directions::new(&p[3], &p[4], &p[5]);
     let mut out = [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]];
     let gold = Conductor::<f32, 3>::new(a.eta, a.k).unwrap_or_else(|e| fail(e));
+    let (mut times, values) = match a.mode.as_str() {
+        "eval" => (eval_mode(&a, wi, wo, gold, &mut out), out.to_vec()),
+        "sample" => sample_mode(&a, &p, gold),
+        other => fail(format!("--mode {other:?}: expected eval or sample")),
+    };
+    write_values(&a.values, &values);
+    times.sort_by(f64::total_cmp);
+    let median = times[times.len() / 2];
+    let json = format!(
+        "{{\n \"n\": {n},\n \"isa\": \"{:?}\",\n \"ndf\": \"{}\",\n \"policy\": \"{}\",\n \"mode\": \"{}\",\n \
+         \"strategy\": \"{}\",\n \"reps\": {},\n \"median_s\": {median:e},\n \"best_s\": {:e}\n}}\n",
+        Isa::detect(),
+        a.ndf,
+        a.policy,
+        a.mode,
+        a.strategy,
+        a.reps,
+        times[0],
+    );
+    fs::write(&a.timing, json).unwrap_or_else(|e| fail(format!("{}: {e}", a.timing)));
+}
+
+/// `--mode eval`: `batch::eval` of the workload times `cos θi`, values left in `out`.
+fn eval_mode(
+    a: &Args,
+    wi: Directions<'_>,
+    wo: Directions<'_>,
+    gold: Conductor<f32, 3>,
+    out: &mut [Vec<f32>; 3],
+) -> Vec<f64> {
     let newton = match a.policy.as_str() {
         "exact" => false,
         "newton" => true,
         other => fail(format!("--policy {other:?}: expected exact or newton")),
     };
     type Fast = NewtonSqrtRecip<3, 3>;
-    let mut times = match (a.ndf.as_str(), newton) {
+    match (a.ndf.as_str(), newton) {
         ("isotropic", false) => {
             let d = GgxIsotropic::<f32>::new(a.alpha).unwrap_or_else(|e| fail(e));
             let m = TimesCosThetaI(CookTorrance::new(d, gold, SmithSeparable));
-            time_eval(&m, wi, wo, &mut out, &a)
+            time_eval(&m, wi, wo, out, a)
         }
         ("isotropic", true) => {
             let d = GgxIsotropic::<f32>::new(a.alpha).unwrap_or_else(|e| fail(e));
             let fast = gold.with_policy::<Fast>();
             let m = TimesCosThetaI(CookTorrance::new(d, fast, SmithSeparable).with_sqrt::<Fast>());
-            time_eval(&m, wi, wo, &mut out, &a)
+            time_eval(&m, wi, wo, out, a)
         }
         ("ggx", false) => {
             let d = Ggx::<f32>::anisotropic(a.alpha, a.alpha).unwrap_or_else(|e| fail(e));
             let m = TimesCosThetaI(CookTorrance::new(d, gold, SmithSeparable));
-            time_eval(&m, wi, wo, &mut out, &a)
+            time_eval(&m, wi, wo, out, a)
         }
         ("ggx", true) => {
             let d = Ggx::<f32>::anisotropic(a.alpha, a.alpha).unwrap_or_else(|e| fail(e));
             let fast = gold.with_policy::<Fast>();
             let m = TimesCosThetaI(CookTorrance::new(d, fast, SmithSeparable).with_sqrt::<Fast>());
-            time_eval(&m, wi, wo, &mut out, &a)
+            time_eval(&m, wi, wo, out, a)
         }
         (other, _) => fail(format!("--ndf {other:?}: expected isotropic or ggx")),
-    };
-    write_values(&a.values, &out);
-    times.sort_by(f64::total_cmp);
-    let median = times[times.len() / 2];
-    let json = format!(
-        "{{\n \"n\": {n},\n \"isa\": \"{:?}\",\n \"ndf\": \"{}\",\n \"policy\": \"{}\",\n \"reps\": {},\n \
-         \"median_s\": {median:e},\n \"best_s\": {:e}\n}}\n",
-        Isa::detect(),
-        a.ndf,
-        a.policy,
-        a.reps,
-        times[0],
-    );
-    fs::write(&a.timing, json).unwrap_or_else(|e| fail(format!("{}: {e}", a.timing)));
+    }
 }
