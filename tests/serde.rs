@@ -11,12 +11,14 @@ mod common;
 use brdf::masking::AnyMasking;
 use brdf::material::{
     AshikhminShirleyDesc, BlinnPhongClassicDesc, CookTorranceDesc, DenominatorDesc, FresnelDesc,
-    KajiyaKayDesc, LafortuneDesc, LambertDesc, LayeredDesc, LobeDesc, Material, MaterialDesc,
-    NdfDesc, NormalizationDesc, NormalizedBlinnPhongDesc, OrenNayarDesc, Preset, Reflectance, Rgb,
-    ShirleyDiffuseDesc, SumDesc, WardDesc, WardNormalizationDesc,
+    KajiyaKayDesc, LafortuneDesc, LambertDesc, LayeredDesc, LobeDesc, MAX_DEPTH, MAX_TERMS,
+    Material, MaterialDesc, MaterialError, NdfDesc, NormalizationDesc, NormalizedBlinnPhongDesc,
+    OrenNayarDesc, Preset, Reflectance, Rgb, ShirleyDiffuseDesc, SumDesc, WardDesc,
+    WardNormalizationDesc,
 };
 use brdf::{Brdf, Vec3};
 use proptest::prelude::*;
+use serde::Deserialize;
 
 /// One valid description of every model and every option.
 fn every_model() -> Vec<MaterialDesc> {
@@ -704,4 +706,192 @@ proptest! {
             }
         }
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Limits and messages (issue 11)
+// ---------------------------------------------------------------------------------------------
+
+/// A description nested `depth` deep through `layered` bases, built in code.
+fn deep_layered(depth: usize) -> MaterialDesc {
+    let lambert: MaterialDesc =
+        toml::from_str("model = \"lambert\"\nalbedo = 0.5").expect("lambert");
+    let mut d = lambert.clone();
+    for _ in 0..depth {
+        d = MaterialDesc::Layered(LayeredDesc {
+            base: Box::new(d),
+            coat: Box::new(lambert.clone()),
+            fresnel: FresnelDesc::One,
+        });
+    }
+    d
+}
+
+/// A `sum` of `terms` Lambertian terms, built in code.
+fn lambert_sum(terms: usize) -> MaterialDesc {
+    let lambert: MaterialDesc =
+        toml::from_str("model = \"lambert\"\nalbedo = 0.001").expect("lambert");
+    MaterialDesc::Sum(SumDesc {
+        terms: vec![lambert; terms],
+    })
+}
+
+#[test]
+fn a_3000_deep_description_is_a_typed_error_not_a_stack_overflow() {
+    let deep = deep_layered(3000);
+    let err = deep.validate().unwrap_err();
+    assert!(
+        matches!(err, MaterialError::TooDeep { .. }),
+        "unexpected error {err:?}"
+    );
+    let msg = err.to_string();
+    assert!(
+        msg.contains("nested") && msg.contains(&MAX_DEPTH.to_string()),
+        "{msg}"
+    );
+    assert!(deep.build::<f32>().is_err());
+    // At the limit it builds; one past it is rejected.
+    assert!(deep_layered(MAX_DEPTH - 1).validate().is_ok());
+    assert!(deep_layered(MAX_DEPTH).validate().is_err());
+    // Release the deep boxes one level at a time.
+    let mut d = deep;
+    while let MaterialDesc::Layered(l) = d {
+        d = *l.base;
+    }
+}
+
+#[test]
+fn a_262144_term_sum_is_rejected_with_a_clear_message() {
+    let err = lambert_sum(262_144).validate().unwrap_err();
+    let msg = err.to_string();
+    assert!(
+        matches!(err, MaterialError::TooLarge { .. }),
+        "unexpected error {err:?}"
+    );
+    assert!(
+        msg.contains("262144") && msg.contains(&MAX_TERMS.to_string()),
+        "{msg}"
+    );
+    assert!(lambert_sum(MAX_TERMS).validate().is_ok());
+    assert!(lambert_sum(MAX_TERMS + 1).validate().is_err());
+    // The cap counts every description in the tree, nested sums included.
+    let half = lambert_sum(MAX_TERMS / 2 + 1);
+    let nested = MaterialDesc::Sum(SumDesc {
+        terms: vec![half.clone(), half],
+    });
+    assert!(matches!(
+        nested.validate(),
+        Err(MaterialError::TooLarge { .. })
+    ));
+}
+
+#[test]
+fn deeply_nested_files_do_not_overflow() {
+    // JSON: 3000 nested `base` tables, and 3000 nested arrays in a value.
+    let mut json = String::new();
+    for _ in 0..3000 {
+        json.push_str(r#"{"model": "layered", "fresnel": "one", "coat": {"model": "lambert", "albedo": 0}, "base": "#);
+    }
+    json.push_str(r#"{"model": "lambert", "albedo": 0.5}"#);
+    json.push_str(&"}".repeat(3000));
+    let mut de = serde_json::Deserializer::from_str(&json);
+    de.disable_recursion_limit();
+    let err = MaterialDesc::deserialize(&mut de).unwrap_err().to_string();
+    assert!(err.contains("nested"), "{err}");
+    let arrays = format!(
+        "{{\"model\": \"lambert\", \"albedo\": {}0{}}}",
+        "[".repeat(3000),
+        "]".repeat(3000)
+    );
+    let mut de = serde_json::Deserializer::from_str(&arrays);
+    de.disable_recursion_limit();
+    let err = MaterialDesc::deserialize(&mut de).unwrap_err().to_string();
+    assert!(err.contains("nested"), "{err}");
+    // TOML: inline tables 3000 deep (the parser or the description rejects it).
+    let mut text = String::from(
+        "model = \"layered\"\nfresnel = \"one\"\ncoat = { model = \"lambert\", albedo = 0 }\nbase = ",
+    );
+    for _ in 0..3000 {
+        text.push_str("{ model = \"layered\", fresnel = \"one\", coat = { model = \"lambert\", albedo = 0 }, base = ");
+    }
+    text.push_str("{ model = \"lambert\", albedo = 0.5 }");
+    text.push_str(&" }".repeat(3000));
+    assert!(toml::from_str::<MaterialDesc>(&text).is_err());
+    // Within the limit, nesting loads.
+    let mut ok = String::new();
+    for _ in 0..MAX_DEPTH - 1 {
+        ok.push_str(r#"{"model": "layered", "fresnel": "one", "coat": {"model": "lambert", "albedo": 0}, "base": "#);
+    }
+    ok.push_str(r#"{"model": "lambert", "albedo": 0.5}"#);
+    ok.push_str(&"}".repeat(MAX_DEPTH - 1));
+    let mut de = serde_json::Deserializer::from_str(&ok);
+    de.disable_recursion_limit();
+    MaterialDesc::deserialize(&mut de).expect("within the depth limit");
+}
+
+#[test]
+fn echoed_input_is_truncated() {
+    let huge = "x".repeat(10 << 20);
+    for text in [
+        format!("model = \"{huge}\"\nalbedo = 0.5"),
+        format!("model = \"lambert\"\nalbedo = 0.5\n{huge} = 1"),
+        format!("model = \"lambert\"\nalbedo = \"{huge}\""),
+        format!("model = \"shirley_diffuse\"\nrho_d = 0.5\nr0 = {{ preset = \"{huge}\" }}"),
+    ] {
+        // The crate's part of the message (TOML's `Display` adds its own excerpt of the
+        // offending source line: the caller's choice) echoes a few dozen characters.
+        let err = toml::from_str::<MaterialDesc>(&text).unwrap_err();
+        let msg = err.message();
+        assert!(msg.len() < 1000, "{} bytes of message", msg.len());
+        assert!(msg.contains("xxxx…"), "{msg:.300}");
+    }
+    let json = format!(r#"{{"model": "{huge}"}}"#);
+    let msg = serde_json::from_str::<MaterialDesc>(&json)
+        .unwrap_err()
+        .to_string();
+    assert!(msg.len() < 1000, "{} bytes of message", msg.len());
+    assert!(msg.contains("`model`") && msg.contains("…"), "{msg:.300}");
+}
+
+#[test]
+fn messages_name_no_internal_types() {
+    let cases = [
+        r#"{"model": 3}"#.to_string(),
+        r#"{"model": "cook_torrance", "ndf": "ggx", "alpha": 0.3, "fresnel": 3}"#.to_string(),
+        r#"{"model": "cook_torrance", "ndf": 3, "alpha": 0.3, "fresnel": "one"}"#.to_string(),
+        r#"{"model": "sum", "terms": 3}"#.to_string(),
+        r#"{"model": "sum", "terms": [3]}"#.to_string(),
+        r#"{"model": "lafortune", "rho_d": 0.1, "lobes": [3]}"#.to_string(),
+        r#"{"model": "layered", "fresnel": "one", "coat": 1, "base": 2}"#.to_string(),
+        r#"{"model": "cook_torrance", "ndf": "ggx", "alpha": 0.3, "fresnel": "one", "masking": 3}"#
+            .to_string(),
+    ];
+    for text in &cases {
+        let msg = serde_json::from_str::<MaterialDesc>(text)
+            .unwrap_err()
+            .to_string();
+        for internal in ["ModelTag", "Desc", "enum ", "struct "] {
+            assert!(!msg.contains(internal), "{text}: {msg}");
+        }
+    }
+}
+
+#[test]
+fn unknown_keys_in_nested_tables_are_named_with_their_path() {
+    toml_rejects(
+        "model = \"cook_torrance\"\nndf = \"ggx\"\nalpha = 0.3\nfresnel = { schlick = { f0 = 0.04, tint = 1 } }",
+        &["`fresnel`", "unknown field `tint`"],
+    );
+    toml_rejects(
+        "model = \"sum\"\n[[terms]]\nmodel = \"lambert\"\nalbedo = 0.5\ncolour = 1\n",
+        &["`terms`", "unknown field `colour`"],
+    );
+    toml_rejects(
+        "model = \"layered\"\nfresnel = \"one\"\ncoat = { model = \"lambert\", albedo = 0 }\nbase = { model = \"sum\", terms = [{ model = \"lambert\", albedo = 0.5, glow = 1 }] }\n",
+        &["`base`", "`terms`", "unknown field `glow`"],
+    );
+    toml_rejects(
+        "model = \"lafortune\"\nrho_d = 0.1\nlobes = [{ cx = -1, cy = -1, cz = 1, n = 10, rho = 0.5, cw = 2 }]",
+        &["`lobes`", "unknown field `cw`"],
+    );
 }

@@ -301,6 +301,7 @@ impl<'de> Deserialize<'de> for Reflectance {
 /// [`Lambert`]: `albedo ∈ [0, 1]` per channel.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "the parameters of `lambert`")]
 pub struct LambertDesc {
     /// Diffuse albedo.
     #[serde(deserialize_with = "field::albedo")]
@@ -310,6 +311,7 @@ pub struct LambertDesc {
 /// [`BlinnPhongClassic`], the engine form `Out = R_d (N·L) + R_s F (N·H)^s`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "the parameters of `blinn_phong_classic`")]
 pub struct BlinnPhongClassicDesc {
     /// Diffuse coefficient (the albedo is `π rd`).
     #[serde(deserialize_with = "field::rd")]
@@ -330,6 +332,7 @@ pub struct BlinnPhongClassicDesc {
 /// `{ tri_ace_fit = { offset = 2.0 } }`.
 #[derive(Clone, Copy, Debug, PartialEq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
+#[serde(expecting = "a normalization name")]
 pub enum NormalizationDesc {
     /// [`Normalization::Unnormalized`].
     Unnormalized,
@@ -385,6 +388,7 @@ impl NormalizationDesc {
 /// The specular denominator of a normalized Blinn-Phong.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
+#[serde(expecting = "a denominator name")]
 pub enum DenominatorDesc {
     /// [`CosThetaI`](crate::models::CosThetaI): the seed talk's form (default).
     #[default]
@@ -396,6 +400,7 @@ pub enum DenominatorDesc {
 /// [`NormalizedBlinnPhong`], the seed talk's model.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "the parameters of `normalized_blinn_phong`")]
 pub struct NormalizedBlinnPhongDesc {
     /// Diffuse albedo.
     #[serde(deserialize_with = "field::rd")]
@@ -420,6 +425,7 @@ pub struct NormalizedBlinnPhongDesc {
 /// The microfacet distribution of a [`CookTorranceDesc`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
+#[serde(expecting = "an NDF name (`ggx` or `beckmann`)")]
 pub enum NdfDesc {
     /// [`Ggx`] (Trowbridge-Reitz).
     Ggx,
@@ -434,6 +440,9 @@ pub enum NdfDesc {
 /// `{ schlick = { f0 = 0.04 } }` or `"one"` (`F = 1`, for white-furnace tests).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
+#[serde(
+    expecting = "a Fresnel term: `{ preset = … }`, `{ dielectric = … }`, `{ conductor = … }`, `{ schlick = … }` or `\"one\"`"
+)]
 pub enum FresnelDesc {
     /// The exact Fresnel term of a preset.
     Preset(Preset),
@@ -468,6 +477,7 @@ pub enum FresnelDesc {
 /// `[1e-4, 1]`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "the parameters of `cook_torrance`")]
 pub struct CookTorranceDesc {
     /// The distribution.
     #[serde(deserialize_with = "field::ndf")]
@@ -504,6 +514,7 @@ pub struct CookTorranceDesc {
 /// Which normalization a Ward model uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
+#[serde(expecting = "a normalization name")]
 pub enum WardNormalizationDesc {
     /// [`Ward1992`](crate::models::Ward1992), the published model (default).
     #[default]
@@ -515,6 +526,7 @@ pub enum WardNormalizationDesc {
 /// [`Ward`]: either `alpha` or both `alpha_x` and `alpha_y` (each `≥ 1e-4`).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "the parameters of `ward`")]
 pub struct WardDesc {
     /// Diffuse reflectance.
     #[serde(deserialize_with = "field::rho_d")]
@@ -551,6 +563,7 @@ pub struct WardDesc {
 /// [`AshikhminShirley`].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "the parameters of `ashikhmin_shirley`")]
 pub struct AshikhminShirleyDesc {
     /// Diffuse reflectance.
     #[serde(deserialize_with = "field::rd")]
@@ -569,6 +582,7 @@ pub struct AshikhminShirleyDesc {
 /// [`ShirleyDiffuse`], the Fresnel-coupled diffuse of Shirley et al. 1997.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "the parameters of `shirley_diffuse`")]
 pub struct ShirleyDiffuseDesc {
     /// Diffuse reflectance of the substrate.
     #[serde(deserialize_with = "field::rho_d")]
@@ -581,6 +595,7 @@ pub struct ShirleyDiffuseDesc {
 /// [`OrenNayar`] (qualitative model).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "the parameters of `oren_nayar`")]
 pub struct OrenNayarDesc {
     /// Albedo.
     #[serde(deserialize_with = "field::rho")]
@@ -593,6 +608,7 @@ pub struct OrenNayarDesc {
 /// One lobe of a [`LafortuneDesc`]: `ρ (Cx x_i x_o + Cy y_i y_o + Cz z_i z_o)^n`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "a lobe: a table with `cx`, `cy`, `cz`, `n` and `rho`")]
 pub struct LobeDesc {
     /// Weight of `x_i x_o`.
     #[serde(deserialize_with = "field::cx")]
@@ -614,6 +630,7 @@ pub struct LobeDesc {
 /// [`Lafortune`] with one to three lobes.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "the parameters of `lafortune`")]
 pub struct LafortuneDesc {
     /// Lambertian part.
     #[serde(deserialize_with = "field::rho_d")]
@@ -634,6 +651,7 @@ fn default_true() -> bool {
 /// [`KajiyaKay`].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "the parameters of `kajiya_kay`")]
 pub struct KajiyaKayDesc {
     /// Diffuse coefficient.
     #[serde(deserialize_with = "field::kd")]
@@ -655,6 +673,7 @@ pub struct KajiyaKayDesc {
 /// [`crate::models::Sum`] of any number of terms (at least one).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "the parameters of `sum`")]
 pub struct SumDesc {
     /// The summands.
     #[serde(deserialize_with = "field::terms")]
@@ -664,6 +683,7 @@ pub struct SumDesc {
 /// [`Layered`]: `coat + (1 − F(cos θi))(1 − F(cos θo)) · base`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[serde(expecting = "the parameters of `layered`")]
 pub struct LayeredDesc {
     /// The base, seen through the coat.
     #[serde(deserialize_with = "field::base")]
@@ -736,7 +756,7 @@ pub enum MaterialDesc {
 
 /// The model names of [`MaterialDesc`], for the `model` key.
 #[derive(Clone, Copy, Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[serde(rename_all = "snake_case", expecting = "a model name")]
 enum ModelTag {
     Lambert,
     BlinnPhongClassic,
@@ -756,7 +776,7 @@ impl<'de> Deserialize<'de> for MaterialDesc {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         // Buffer the table first (naming each key in parse errors), then read `model`
         // wherever it is, then the parameters into that model's struct.
-        let Value::Map(mut entries) = d.deserialize_any(ValueVisitor)? else {
+        let Value::Map(mut entries) = d.deserialize_any(ValueVisitor(0))? else {
             return Err(de::Error::custom(
                 "expected a material: a table with a `model` key",
             ));
@@ -811,8 +831,32 @@ enum Value {
     Map(Vec<(alloc::string::String, Value)>),
 }
 
-/// Reads any value; errors while reading a map's value name its key.
-struct ValueVisitor;
+/// How deeply the tables and arrays of one file may nest: room for [`MAX_DEPTH`] nested
+/// descriptions (a `sum` level takes a table and an array) and the few levels inside a leaf
+/// model (Lafortune's lobes, an `f0` table). Checked while reading, so hostile input cannot
+/// overflow the stack whatever the format's own limit.
+const MAX_VALUE_DEPTH: usize = 2 * MAX_DEPTH + 6;
+
+/// The longest input string echoed in a message, in characters; longer ones are cut with
+/// `…` (no name the crate knows is this long, so a cut string never matches one).
+const MAX_ECHO: usize = 48;
+
+/// `s`, cut to [`MAX_ECHO`] characters with a trailing `…` if longer.
+fn truncated(s: &str) -> alloc::string::String {
+    match s.char_indices().nth(MAX_ECHO) {
+        None => s.into(),
+        Some((at, _)) => {
+            let mut t = alloc::string::String::from(&s[..at]);
+            t.push('…');
+            t
+        }
+    }
+}
+
+/// Reads any value nested at most [`MAX_VALUE_DEPTH`] deep (`.0` is the current depth);
+/// errors while reading a map's value name its key.
+#[derive(Clone, Copy)]
+struct ValueVisitor(usize);
 
 impl<'de> de::DeserializeSeed<'de> for ValueVisitor {
     type Value = Value;
@@ -821,14 +865,30 @@ impl<'de> de::DeserializeSeed<'de> for ValueVisitor {
     }
 }
 
-/// [`ValueVisitor`] for the value of key `.0`.
-struct KeyedValue<'a>(&'a str);
+impl ValueVisitor {
+    /// The visitor one table or array deeper, or the error past the limit.
+    fn deeper<E: de::Error>(self) -> Result<Self, E> {
+        if self.0 >= MAX_VALUE_DEPTH {
+            Err(E::custom(format_args!(
+                "tables and arrays nested more than {MAX_VALUE_DEPTH} levels deep"
+            )))
+        } else {
+            Ok(ValueVisitor(self.0 + 1))
+        }
+    }
+}
+
+/// [`ValueVisitor`] for the value of key `key`.
+struct KeyedValue<'a> {
+    key: &'a str,
+    inner: ValueVisitor,
+}
 
 impl<'de> de::DeserializeSeed<'de> for KeyedValue<'_> {
     type Value = Value;
     fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<Value, D::Error> {
-        let key = self.0;
-        d.deserialize_any(ValueVisitor)
+        let key = self.key;
+        d.deserialize_any(self.inner)
             .map_err(|e| de::Error::custom(format_args!("`{key}`: {e}")))
     }
 }
@@ -845,7 +905,7 @@ impl<'de> Visitor<'de> for ValueVisitor {
         Ok(Value::Unit)
     }
     fn visit_some<D: Deserializer<'de>>(self, d: D) -> Result<Value, D::Error> {
-        d.deserialize_any(self)
+        d.deserialize_any(self.deeper()?)
     }
     fn visit_bool<E: de::Error>(self, v: bool) -> Result<Value, E> {
         Ok(Value::Bool(v))
@@ -860,19 +920,24 @@ impl<'de> Visitor<'de> for ValueVisitor {
         Ok(Value::F64(v))
     }
     fn visit_str<E: de::Error>(self, v: &str) -> Result<Value, E> {
-        Ok(Value::Str(v.into()))
+        // Every string of a description is a name; a longer one is wrong anyway, and
+        // cutting it here keeps every message that echoes it short.
+        Ok(Value::Str(truncated(v)))
     }
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Value, A::Error> {
+        let inner = self.deeper()?;
         let mut v = Vec::new();
-        while let Some(x) = seq.next_element_seed(ValueVisitor)? {
+        while let Some(x) = seq.next_element_seed(inner)? {
             v.push(x);
         }
         Ok(Value::Seq(v))
     }
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Value, A::Error> {
+        let inner = self.deeper()?;
         let mut v = Vec::new();
         while let Some(k) = map.next_key::<alloc::string::String>()? {
-            let x = map.next_value_seed(KeyedValue(&k))?;
+            let k = truncated(&k);
+            let x = map.next_value_seed(KeyedValue { key: &k, inner })?;
             v.push((k, x));
         }
         Ok(Value::Map(v))
@@ -997,8 +1062,21 @@ impl<'de, E: de::Error> de::VariantAccess<'de> for ValueDe<E> {
     }
 }
 
-/// A description that the model's constructor rejected, or an inconsistent one.
+/// The most descriptions on one path from the root of a material to a leaf model
+/// (`sum` and `layered` nest others): deeper descriptions are rejected by
+/// [`MaterialDesc::validate`] and [`MaterialDesc::build`] with [`MaterialError::TooDeep`],
+/// found without recursion.
+pub const MAX_DEPTH: usize = 32;
+
+/// The most leaf models (every description other than `sum` and `layered`) in one material:
+/// a `sum` evaluates each term for every direction pair, so larger ones are rejected with
+/// [`MaterialError::TooLarge`] instead of loading and then rendering for minutes.
+pub const MAX_TERMS: usize = 1024;
+
+/// A description that the model's constructor rejected, an inconsistent one, or one past
+/// the limits [`MAX_DEPTH`] and [`MAX_TERMS`].
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum MaterialError {
     /// A constructor rejected a parameter.
     Invalid {
@@ -1016,6 +1094,21 @@ pub enum MaterialError {
         /// Why.
         reason: &'static str,
     },
+    /// Descriptions nested deeper than [`MAX_DEPTH`].
+    TooDeep {
+        /// The limit, [`MAX_DEPTH`].
+        limit: usize,
+    },
+    /// More leaf models than [`MAX_TERMS`].
+    TooLarge {
+        /// The model whose field went past the limit (`"sum"` or `"layered"`).
+        model: &'static str,
+        /// How many terms that `sum` has, or how many leaf models were counted when the
+        /// limit was passed.
+        count: usize,
+        /// The limit, [`MAX_TERMS`].
+        limit: usize,
+    },
 }
 
 impl fmt::Display for MaterialError {
@@ -1029,6 +1122,18 @@ impl fmt::Display for MaterialError {
             } => {
                 write!(f, "`{model}`: field `{field}`: {reason}")
             }
+            MaterialError::TooDeep { limit } => write!(
+                f,
+                "materials nested more than {limit} levels deep (`sum` and `layered` inside each other)"
+            ),
+            MaterialError::TooLarge {
+                model,
+                count,
+                limit,
+            } => write!(
+                f,
+                "`{model}`: {count} terms, more than the {limit} models one material may hold"
+            ),
         }
     }
 }
@@ -1122,41 +1227,109 @@ impl MaterialDesc {
 
     /// Whether the material depends on the azimuth about the normal (so a renderer needs
     /// a tangent frame, and an albedo table needs `φ`).
+    /// Walks the tree with an explicit stack, so any depth is safe.
     #[must_use]
     pub fn is_anisotropic(&self) -> bool {
         let aniso_alpha =
             |a: Option<f64>, x: Option<f64>, y: Option<f64>| a.is_none() && x.is_some() && x != y;
-        match self {
-            MaterialDesc::CookTorrance(d) => aniso_alpha(d.alpha, d.alpha_x, d.alpha_y),
-            MaterialDesc::Ward(d) => aniso_alpha(d.alpha, d.alpha_x, d.alpha_y),
-            MaterialDesc::AshikhminShirley(d) => d.nu != d.nv,
-            MaterialDesc::Lafortune(d) => d.lobes.iter().any(|l| l.cx != l.cy),
-            MaterialDesc::KajiyaKay(_) => true,
-            MaterialDesc::Sum(d) => d.terms.iter().any(MaterialDesc::is_anisotropic),
-            MaterialDesc::Layered(d) => d.base.is_anisotropic() || d.coat.is_anisotropic(),
-            MaterialDesc::Lambert(_)
-            | MaterialDesc::BlinnPhongClassic(_)
-            | MaterialDesc::NormalizedBlinnPhong(_)
-            | MaterialDesc::ShirleyDiffuse(_)
-            | MaterialDesc::OrenNayar(_) => false,
+        let mut stack = alloc::vec![self];
+        while let Some(d) = stack.pop() {
+            let leaf = match d {
+                MaterialDesc::CookTorrance(d) => aniso_alpha(d.alpha, d.alpha_x, d.alpha_y),
+                MaterialDesc::Ward(d) => aniso_alpha(d.alpha, d.alpha_x, d.alpha_y),
+                MaterialDesc::AshikhminShirley(d) => d.nu != d.nv,
+                MaterialDesc::Lafortune(d) => d.lobes.iter().any(|l| l.cx != l.cy),
+                MaterialDesc::KajiyaKay(_) => true,
+                MaterialDesc::Sum(d) => {
+                    stack.extend(d.terms.iter());
+                    false
+                }
+                MaterialDesc::Layered(d) => {
+                    stack.push(&d.base);
+                    stack.push(&d.coat);
+                    false
+                }
+                MaterialDesc::Lambert(_)
+                | MaterialDesc::BlinnPhongClassic(_)
+                | MaterialDesc::NormalizedBlinnPhong(_)
+                | MaterialDesc::ShirleyDiffuse(_)
+                | MaterialDesc::OrenNayar(_) => false,
+            };
+            if leaf {
+                return true;
+            }
         }
+        false
     }
 
-    /// Checks that the material builds in `f32` and in `f64` (what deserialization runs).
+    /// Checks the limits ([`Self::check_limits`]) and that the material builds in `f32` and
+    /// in `f64` (what deserialization runs).
     ///
     /// # Errors
-    /// The first rejected parameter.
+    /// The first limit passed or rejected parameter.
     pub fn validate(&self) -> Result<(), MaterialError> {
-        self.build::<f64>()?;
-        self.build::<f32>()?;
+        self.check_limits()?;
+        self.build_checked::<f64>()?;
+        self.build_checked::<f32>()?;
         Ok(())
     }
 
-    /// Builds the model with the constructors of the crate.
+    /// Checks [`MAX_DEPTH`] and [`MAX_TERMS`] with an explicit stack (no recursion, and at
+    /// most about `MAX_TERMS + MAX_DEPTH` descriptions visited whatever the size of `self`).
     ///
     /// # Errors
-    /// [`MaterialError`] naming the model and the parameter.
+    /// [`MaterialError::TooDeep`] or [`MaterialError::TooLarge`].
+    pub fn check_limits(&self) -> Result<(), MaterialError> {
+        let mut stack: Vec<(&MaterialDesc, usize)> = Vec::new();
+        stack.push((self, 1));
+        let mut leaves = 0usize;
+        while let Some((d, depth)) = stack.pop() {
+            if depth > MAX_DEPTH {
+                return Err(MaterialError::TooDeep { limit: MAX_DEPTH });
+            }
+            match d {
+                MaterialDesc::Sum(s) => {
+                    if s.terms.len() > MAX_TERMS {
+                        return Err(MaterialError::TooLarge {
+                            model: "sum",
+                            count: s.terms.len(),
+                            limit: MAX_TERMS,
+                        });
+                    }
+                    stack.extend(s.terms.iter().map(|t| (t, depth + 1)));
+                }
+                MaterialDesc::Layered(l) => {
+                    // The base last, so it is visited first: depth is found before size.
+                    stack.push((&l.coat, depth + 1));
+                    stack.push((&l.base, depth + 1));
+                }
+                _ => {
+                    leaves += 1;
+                    if leaves > MAX_TERMS {
+                        return Err(MaterialError::TooLarge {
+                            model: self.model_name(),
+                            count: leaves,
+                            limit: MAX_TERMS,
+                        });
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Builds the model with the constructors of the crate, after [`Self::check_limits`].
+    ///
+    /// # Errors
+    /// [`MaterialError`] naming the model and the parameter, or the limit passed.
     pub fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+        self.check_limits()?;
+        self.build_checked()
+    }
+
+    /// [`Self::build`] of a description within the limits (so the recursion is at most
+    /// [`MAX_DEPTH`] deep).
+    fn build_checked<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
         let model = self.model_name();
         let inv = |error| MaterialError::Invalid { model, error };
         let s = S::of;
@@ -1278,13 +1451,13 @@ impl MaterialDesc {
                 Material::Sum(
                     d.terms
                         .iter()
-                        .map(MaterialDesc::build)
+                        .map(MaterialDesc::build_checked)
                         .collect::<Result<_, _>>()?,
                 )
             }
             MaterialDesc::Layered(d) => Material::Layered(Box::new(Layered::new(
-                d.base.build()?,
-                d.coat.build()?,
+                d.base.build_checked()?,
+                d.coat.build_checked()?,
                 build_fresnel(&d.fresnel).map_err(inv)?,
             ))),
         })

@@ -79,6 +79,7 @@ pub const DENOM_FLOOR: f64 = 1e-20;
 
 /// Whether a model satisfies Helmholtz reciprocity `f(wi, wo) = f(wo, wi)`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Reciprocity {
     /// Reciprocal for every valid parameter and direction.
     Reciprocal,
@@ -98,6 +99,7 @@ pub enum Reciprocity {
 /// normalized Blinn-Phong satisfies the first and breaks the second at grazing light). Each
 /// model's declaration says which side it refers to when they differ.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Energy {
     /// Albedo ≤ 1 over the model's whole parameter domain.
     Conserving,
