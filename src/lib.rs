@@ -124,6 +124,7 @@ mod math;
 
 pub mod analysis;
 pub mod batch;
+pub mod energy;
 pub mod error;
 pub mod fast;
 pub mod frame;
