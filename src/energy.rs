@@ -29,7 +29,7 @@
 
 use crate::fresnel::FresnelTerm;
 use crate::ndf::{Beckmann, Ggx, SmithLambda};
-use crate::{Real, Vec3};
+use crate::{Error, Real, Vec3};
 
 /// Gauss-Legendre nodes per panel of the albedo quadratures.
 pub const ORDER: usize = 16;
@@ -115,8 +115,8 @@ pub enum Distribution {
 /// axes use [`PANELS`] × [`ORDER`] Gauss-Legendre nodes (4096 evaluations); the rule is
 /// fixed, so results are deterministic.
 ///
-/// Domain: `alpha ∈ [1e-4, 1]` (validated by the NDF constructors: an invalid `α` gives
-/// `NaN`), `cos_theta_o ∈ (0, 1]` (clamped to `[1e-6, 1]`). Result in `[0, 1]`; `E → 1` as
+/// Domain: `alpha ∈ [1e-4, 1]` (validated as by the NDF constructors), `cos_theta_o ∈
+/// [0, 1]` (clamped to `[1e-6, 1]`). Result in `[0, 1]`; `E → 1` as
 /// `α → 0`. Accuracy against the crate's adaptive reference: see `tests/energy.rs`.
 ///
 /// References: Walter et al., EGSR 2007; E. Heitz, "Understanding the Masking-Shadowing
@@ -129,15 +129,24 @@ pub enum Distribution {
 /// use brdf::{ndf::Ggx, Vec3};
 ///
 /// // GGX, α = 1, normal view: a large part of the energy is lost to single scattering.
-/// let e = directional_albedo(Distribution::Ggx, 1.0, 1.0);
+/// let e = directional_albedo(Distribution::Ggx, 1.0, 1.0)?;
 /// let ct = CookTorrance::new(Ggx::new(1.0)?, NoFresnel, SmithHeightCorrelated);
 /// let [r] = adaptive::<_, f64, 1>(&ct, Vec3::new(0.0, 0.0, 1.0), &AlbedoConfig::DEFAULT);
 /// assert!((e - r).abs() < 1e-4 && e < 0.9);
 /// # Ok::<(), brdf::Error>(())
 /// ```
-#[must_use]
-pub fn directional_albedo(distribution: Distribution, alpha: f64, cos_theta_o: f64) -> f64 {
-    match distribution {
+///
+/// # Errors
+/// [`Error::NotFinite`] or [`Error::OutOfDomain`] for `alpha` outside `[1e-4, 1]` or
+/// `cos_theta_o` outside `[0, 1]`.
+pub fn directional_albedo(
+    distribution: Distribution,
+    alpha: f64,
+    cos_theta_o: f64,
+) -> Result<f64, Error> {
+    crate::error::unit_interval("cos_theta_o", cos_theta_o)?;
+    crate::error::check("alpha", alpha, "[1e-4, 1]", |a| (1e-4..=1.0).contains(&a))?;
+    Ok(match distribution {
         Distribution::Ggx => match Ggx::new(alpha) {
             Ok(ndf) => albedo_with(
                 &ndf,
@@ -145,7 +154,7 @@ pub fn directional_albedo(distribution: Distribution, alpha: f64, cos_theta_o: f
                 |w| alpha * alpha * (1.0 - w * w) / (w * w),
                 |t2| alpha / Real::sqrt(alpha * alpha + t2),
             ),
-            Err(_) => f64::NAN,
+            Err(e) => return Err(e),
         },
         Distribution::Beckmann => match Beckmann::new(alpha) {
             Ok(ndf) => albedo_with(
@@ -154,9 +163,9 @@ pub fn directional_albedo(distribution: Distribution, alpha: f64, cos_theta_o: f
                 |w| -2.0 * alpha * alpha * Real::ln(w),
                 |t2| Real::exp(-0.5 * t2 / (alpha * alpha)),
             ),
-            Err(_) => f64::NAN,
+            Err(e) => return Err(e),
         },
-    }
+    })
 }
 
 fn albedo_with<D: SmithLambda<f64>>(
@@ -248,12 +257,16 @@ fn graded_break(mu: f64, k: usize) -> Option<f64> {
 /// `α → 0`.
 ///
 /// Reference: Kulla & Conty 2017 (`E_avg`).
-#[must_use]
-pub fn average_albedo(distribution: Distribution, alpha: f64) -> f64 {
+///
+/// # Errors
+/// As [`directional_albedo`] for `alpha`.
+pub fn average_albedo(distribution: Distribution, alpha: f64) -> Result<f64, Error> {
+    directional_albedo(distribution, alpha, 1.0)?;
     let nodes = gauss_legendre::<ORDER>();
-    2.0 * integrate_01(&nodes, |mu| {
-        directional_albedo(distribution, alpha, mu) * mu
-    })
+    Ok(2.0
+        * integrate_01(&nodes, |mu| {
+            directional_albedo(distribution, alpha, mu).unwrap_or(0.0) * mu
+        }))
 }
 
 /// Cosine-weighted hemispherical average of a Fresnel term, `F_avg = 2 ∫_0^1 F(μ) μ dμ`,

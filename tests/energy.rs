@@ -40,7 +40,7 @@ fn ggx_albedo_matches_the_adaptive_reference() {
         let ndf = Ggx::new(alpha).unwrap();
         let ct = CookTorrance::new(ndf, NoFresnel, SmithHeightCorrelated);
         for mu in MUS {
-            let e = directional_albedo(DIST, alpha, mu);
+            let e = directional_albedo(DIST, alpha, mu).unwrap();
             let [r] = reference_albedo::<_, f64, 1>(&ct, wo_of(mu), &AlbedoConfig::DEFAULT);
             let err = (e - r).abs();
             if err > worst.0 {
@@ -63,7 +63,7 @@ fn beckmann_albedo_matches_the_adaptive_reference() {
         let ndf = Beckmann::new(alpha).unwrap();
         let ct = CookTorrance::new(ndf, NoFresnel, SmithHeightCorrelated);
         for mu in MUS {
-            let e = directional_albedo(DIST, alpha, mu);
+            let e = directional_albedo(DIST, alpha, mu).unwrap();
             let [r] = reference_albedo::<_, f64, 1>(&ct, wo_of(mu), &AlbedoConfig::DEFAULT);
             let err = (e - r).abs();
             if err > worst.0 {
@@ -101,7 +101,7 @@ fn ggx_albedo_agrees_with_a_monte_carlo_estimate_within_4_sigma() {
         }
         let mean = s / f64::from(n);
         let sigma = ((s2 / f64::from(n) - mean * mean) / f64::from(n)).sqrt();
-        let e = directional_albedo(Distribution::Ggx, alpha, mu);
+        let e = directional_albedo(Distribution::Ggx, alpha, mu).unwrap();
         assert!(
             (mean - e).abs() < 4.0 * sigma,
             "α {alpha} μ {mu}: MC {mean} ± {sigma}, E {e}"
@@ -112,11 +112,11 @@ fn ggx_albedo_agrees_with_a_monte_carlo_estimate_within_4_sigma() {
 
 #[test]
 fn albedo_tends_to_one_for_a_smooth_surface_and_drops_with_roughness() {
-    assert!((directional_albedo(Distribution::Ggx, 1e-3, 0.5) - 1.0).abs() < 1e-4);
-    assert!((average_albedo(Distribution::Beckmann, 1e-3) - 1.0).abs() < 1e-3);
+    assert!((directional_albedo(Distribution::Ggx, 1e-3, 0.5).unwrap() - 1.0).abs() < 1e-4);
+    assert!((average_albedo(Distribution::Beckmann, 1e-3).unwrap() - 1.0).abs() < 1e-3);
     let mut last = 1.0;
     for alpha in [0.1, 0.3, 0.6, 1.0] {
-        let e = average_albedo(Distribution::Ggx, alpha);
+        let e = average_albedo(Distribution::Ggx, alpha).unwrap();
         assert!(e < last, "E_avg not decreasing at α = {alpha}");
         last = e;
     }
@@ -153,11 +153,11 @@ fn conductor_average_matches_a_fine_midpoint_rule() {
 #[test]
 fn kulla_conty_lobe_fills_the_missing_energy_with_f_equal_one() {
     for alpha in [0.3, 1.0] {
-        let e_avg = average_albedo(Distribution::Ggx, alpha);
+        let e_avg = average_albedo(Distribution::Ggx, alpha).unwrap();
         assert!((kulla_conty_fresnel(1.0, e_avg) - 1.0).abs() < 1e-15);
         let (x, w) = gauss_legendre::<48>();
         for mu_o in [0.05, 0.5, 1.0] {
-            let e_o = directional_albedo(Distribution::Ggx, alpha, mu_o);
+            let e_o = directional_albedo(Distribution::Ggx, alpha, mu_o).unwrap();
             let ms: f64 = x
                 .iter()
                 .zip(&w)
@@ -165,7 +165,7 @@ fn kulla_conty_lobe_fills_the_missing_energy_with_f_equal_one() {
                     wt * 2.0
                         * core::f64::consts::PI
                         * kulla_conty_lobe(
-                            directional_albedo(Distribution::Ggx, alpha, mi),
+                            directional_albedo(Distribution::Ggx, alpha, mi).unwrap(),
                             e_o,
                             e_avg,
                         )
@@ -186,13 +186,41 @@ fn kulla_conty_lobe_fills_the_missing_energy_with_f_equal_one() {
 #[test]
 fn turquin_factor_is_a_furnace_fix_and_not_reciprocal() {
     for mu in [0.05, 0.5, 1.0] {
-        let e = directional_albedo(Distribution::Ggx, 0.8, mu);
+        let e = directional_albedo(Distribution::Ggx, 0.8, mu).unwrap();
         assert!((turquin_factor(1.0, e) * e - 1.0).abs() < 1e-12);
     }
     let (e_i, e_o) = (
-        directional_albedo(Distribution::Ggx, 0.8, 0.1),
-        directional_albedo(Distribution::Ggx, 0.8, 0.9),
+        directional_albedo(Distribution::Ggx, 0.8, 0.1).unwrap(),
+        directional_albedo(Distribution::Ggx, 0.8, 0.9).unwrap(),
     );
     let (a, b) = (turquin_factor(0.5, e_o), turquin_factor(0.5, e_i));
     assert!((a - b).abs() / a > 1e-2, "f(wi, wo)/f(wo, wi) = {}", a / b);
+}
+
+/// Bad input is a typed error, never a NaN.
+#[test]
+fn bad_input_is_an_error() {
+    use brdf::Error;
+    for alpha in [0.0, 1e-5, 1.5, f64::NAN] {
+        let e = directional_albedo(Distribution::Ggx, alpha, 0.5).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::OutOfDomain { param: "alpha", .. } | Error::NotFinite { param: "alpha" }
+            ),
+            "{e:?}"
+        );
+        assert!(average_albedo(Distribution::Beckmann, alpha).is_err());
+    }
+    for mu in [-0.1, 1.1, f64::INFINITY] {
+        assert!(
+            directional_albedo(Distribution::Beckmann, 0.3, mu).is_err(),
+            "{mu}"
+        );
+    }
+    assert!(
+        directional_albedo(Distribution::Ggx, 0.3, 0.0)
+            .unwrap()
+            .is_finite()
+    );
 }
