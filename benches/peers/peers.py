@@ -359,7 +359,8 @@ def cmd_compare_sample(a):
             sys.exit(f"{path}: expected 7 arrays (wi, pdf, weight), found {v.shape[0]}")
         wi, pdf, weight = v[:3], v[3], v[4:]
         valid = (pdf > 0) & (wi[2] > 0)
-        ref_pdf, ref_w = sample_reference(p, wi[:, valid], w["alpha"], w["eta"], w["k"])
+        pv = {key: x[valid] for key, x in p.items()}
+        ref_pdf, ref_w = sample_reference(pv, wi[:, valid], w["alpha"], w["eta"], w["k"])
         e_pdf = rel_error(pdf[valid], ref_pdf)
         e_w = rel_error(weight[:, valid], ref_w)
         result[name] = {
