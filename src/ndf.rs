@@ -44,11 +44,12 @@
 //! [`roughness_to_alpha`], [`alpha_to_roughness`] (Burley 2012, Karis 2013) and
 //! [`beckmann_alpha_to_ggx_alpha`] — with the measured distance between the matched lobes.
 //!
-//! # Blinn 1977
+//! # Reference-only: Blinn 1977
 //!
-//! [`blinn1977_d1`], [`blinn1977_d2`], [`blinn1977_d3`]: Blinn's three un-normalized
-//! distributions (peak value 1), with the half-intensity constants of each. They are for
-//! comparison only and do not implement [`Ndf`].
+//! [`reference`] holds [`reference::blinn1977_d1`], [`reference::blinn1977_d2`] and
+//! [`reference::blinn1977_d3`]: Blinn's three un-normalized distributions (peak value 1),
+//! with the half-intensity constants of each. They are for comparison only and do not
+//! implement [`Ndf`].
 //!
 //! # References
 //!
@@ -223,6 +224,10 @@ const SHININESS_DOMAIN: &str = "[0, 2e8 − 2]";
 /// `∫ D cos θm dωm = 1` for every `alpha_x, alpha_y > 0` (tested by quadrature for
 /// `alpha` from 1e-3 to 1 and anisotropy ratios up to 10).
 ///
+/// The formulas are the functions `ggx_d`, `ggx_lambda`, … below the type in `src/ndf.rs`,
+/// written on two quadratic forms of a direction; [`GgxIsotropic`] calls the same functions
+/// with its cheaper forms.
+///
 /// Domain: `alpha_x, alpha_y ∈ [1e-4, 1]` (see the [module docs](self)); `alpha_x` is the
 /// roughness along the tangent (x), `alpha_y` along the bitangent (y).
 ///
@@ -245,263 +250,230 @@ const SHININESS_DOMAIN: &str = "[0, 2e8 − 2]";
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ggx<R> {
-    alpha_x: R,
-    alpha_y: R,
-    alpha_x2: R,
-    alpha_y2: R,
-    inv_alpha_x2: R,
-    inv_alpha_y2: R,
-    /// `1/(π αx αy)`.
-    norm: R,
+    alphas: Alphas<R>,
 }
 
-/// Builds the shared constants of the two alpha-parameterized NDFs.
-macro_rules! alpha_ndf_ctors {
-    ($t:ident) => {
-        impl<S: Scalar> $t<S> {
-            /// Isotropic distribution with slope parameter `alpha ∈ [1e-4, 1]`.
-            ///
-            /// # Errors
-            /// [`Error::NotFinite`] or [`Error::OutOfDomain`] for `alpha` outside `[1e-4, 1]`.
-            #[inline]
-            pub fn new(alpha: S) -> Result<Self, Error> {
-                Self::anisotropic(alpha, alpha)
-            }
-
-            /// Anisotropic distribution: `alpha_x` along the tangent, `alpha_y` along the
-            /// bitangent, each in `[1e-4, 1]`.
-            ///
-            /// # Errors
-            /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming the offending parameter.
-            #[inline]
-            pub fn anisotropic(alpha_x: S, alpha_y: S) -> Result<Self, Error> {
-                Self::from_lanes(alpha_x, alpha_y)
-            }
-
-            /// Isotropic distribution from perceptual roughness `roughness ∈ [0.01, 1]`,
-            /// `alpha = roughness²` ([`roughness_to_alpha`]).
-            ///
-            /// # Errors
-            /// As [`Self::new`] for the resulting `alpha` (so `roughness < 0.01` is rejected
-            /// and reported as `alpha`).
-            #[inline]
-            pub fn from_roughness(roughness: S) -> Result<Self, Error> {
-                Self::new(roughness * roughness)
-            }
-        }
-
-        impl<R: Real> $t<R> {
-            /// One (possibly different) material per lane: every lane of `alpha_x` and
-            /// `alpha_y` is validated as in [`Self::anisotropic`].
-            ///
-            /// # Errors
-            /// The first offending lane's parameter.
-            #[inline]
-            pub fn from_lanes(alpha_x: R, alpha_y: R) -> Result<Self, Error> {
-                check_lanes("alpha_x", alpha_x, ALPHA_DOMAIN, MIN_ALPHA, MAX_ALPHA)?;
-                check_lanes("alpha_y", alpha_y, ALPHA_DOMAIN, MIN_ALPHA, MAX_ALPHA)?;
-                Ok(Self::from_valid(alpha_x, alpha_y))
-            }
-
-            /// The constants of already validated slope parameters.
-            #[inline]
-            fn from_valid(alpha_x: R, alpha_y: R) -> Self {
-                let (alpha_x2, alpha_y2) = (alpha_x * alpha_x, alpha_y * alpha_y);
-                Self {
-                    alpha_x,
-                    alpha_y,
-                    alpha_x2,
-                    alpha_y2,
-                    inv_alpha_x2: alpha_x2.recip(),
-                    inv_alpha_y2: alpha_y2.recip(),
-                    norm: R::frac_1_pi() / (alpha_x * alpha_y),
-                }
-            }
-
-            /// Slope parameter along the tangent (x).
-            #[inline]
-            #[must_use]
-            pub fn alpha_x(&self) -> R {
-                self.alpha_x
-            }
-
-            /// Slope parameter along the bitangent (y).
-            #[inline]
-            #[must_use]
-            pub fn alpha_y(&self) -> R {
-                self.alpha_y
-            }
-
-            /// `x² αx² + y² αy²` = `(α(w) sin θ)²`, the squared projected roughness times
-            /// `sin² θ` (Heitz 2014, anisotropic Λ).
-            #[inline(always)]
-            fn stretched_sin2(&self, w: Vec3<R>) -> R {
-                w.x * w.x * self.alpha_x2 + w.y * w.y * self.alpha_y2
-            }
-
-            /// `x²/αx² + y²/αy²` = `tan² θm / α(wm)² · cos² θm`: the squared slope radius
-            /// of `wm` in the unit-roughness configuration, times `cos² θm`.
-            #[inline(always)]
-            fn slope2_cos2(&self, wm: Vec3<R>) -> R {
-                wm.x * wm.x * self.inv_alpha_x2 + wm.y * wm.y * self.inv_alpha_y2
-            }
-        }
-
-        impl<R: Real> ProjectedAlpha<R> for $t<R> {
-            /// `α(w) = √((x² αx² + y² αy²)/(x² + y²))` (Heitz 2014, anisotropic Λ); at normal
-            /// incidence, where it is undefined and irrelevant, `√((αx² + αy²)/2)`.
-            #[inline(always)]
-            fn projected_alpha(&self, w: Vec3<R>) -> R {
-                let sin2 = w.x * w.x + w.y * w.y;
-                let normal = sin2.le(tiny());
-                let a2 = R::select(
-                    normal,
-                    (self.alpha_x2 + self.alpha_y2) * R::from_f64(0.5),
-                    self.stretched_sin2(w) / sin2.max(tiny()),
-                );
-                a2.sqrt()
-            }
-        }
-    };
-}
-
-alpha_ndf_ctors!(Ggx);
-alpha_ndf_ctors!(Beckmann);
-
-/// `Splat` of the two alpha-parameterized NDFs (same fields).
-macro_rules! splat_alpha_ndf {
-    ($($t:ident),*) => {
-        $(splat_ndf!($t {
-            alpha_x,
-            alpha_y,
-            alpha_x2,
-            alpha_y2,
-            inv_alpha_x2,
-            inv_alpha_y2,
-            norm
-        });)*
-    };
-}
-splat_alpha_ndf!(Ggx, Beckmann);
-
-/// The quadratic forms in which [`Ggx`] and [`GgxIsotropic`] differ. The GGX formulas —
-/// `D`, `Λ` and the visibility denominators — are written once on top of them
-/// (the private `ggx_formulas!` macro), so the isotropic type is the same body with cheaper forms.
-trait GgxForms<R: Real> {
-    /// `1/(π αx αy)`.
-    fn norm(&self) -> R;
-    /// `x²/αx² + y²/αy²` of a (possibly unnormalized) `v`: the stretched slope part of the
-    /// `D` denominator.
-    fn slope2_cos2(&self, v: Vec3<R>) -> R;
-    /// `s = x² αx² + y² αy²` = `(α(w) sin θ)²`.
-    fn stretched_sin2(&self, w: Vec3<R>) -> R;
-    /// `cos²θ + s` of a unit `w`, the radicand of the visibility denominators.
-    fn root2(&self, w: Vec3<R>) -> R;
-}
-
-impl<R: Real> GgxForms<R> for Ggx<R> {
-    #[inline(always)]
-    fn norm(&self) -> R {
-        self.norm
+impl<S: Scalar> Ggx<S> {
+    /// Isotropic distribution with slope parameter `alpha ∈ [1e-4, 1]`.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming `alpha`, for `alpha` outside
+    /// `[1e-4, 1]`.
+    #[inline]
+    pub fn new(alpha: S) -> Result<Self, Error> {
+        Ok(Self {
+            alphas: Alphas::isotropic(alpha)?,
+        })
     }
-    #[inline(always)]
-    fn slope2_cos2(&self, v: Vec3<R>) -> R {
-        Ggx::slope2_cos2(self, v)
+
+    /// Anisotropic distribution: `alpha_x` along the tangent, `alpha_y` along the
+    /// bitangent, each in `[1e-4, 1]`.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming the offending parameter.
+    #[inline]
+    pub fn anisotropic(alpha_x: S, alpha_y: S) -> Result<Self, Error> {
+        Self::from_lanes(alpha_x, alpha_y)
     }
-    #[inline(always)]
-    fn stretched_sin2(&self, w: Vec3<R>) -> R {
-        Ggx::stretched_sin2(self, w)
+
+    /// Isotropic distribution from perceptual roughness `roughness ∈ [0.01, 1]`,
+    /// `alpha = roughness²` ([`roughness_to_alpha`]).
+    ///
+    /// # Errors
+    /// As [`Self::new`] for the resulting `alpha` (so `roughness < 0.01` is rejected
+    /// and reported as `alpha`).
+    #[inline]
+    pub fn from_roughness(roughness: S) -> Result<Self, Error> {
+        Self::new(roughness * roughness)
     }
+}
+
+impl<R: Real> Ggx<R> {
+    /// One (possibly different) material per lane: every lane of `alpha_x` and
+    /// `alpha_y` is validated as in [`Self::anisotropic`].
+    ///
+    /// # Errors
+    /// The first offending lane's parameter.
+    #[inline]
+    pub fn from_lanes(alpha_x: R, alpha_y: R) -> Result<Self, Error> {
+        Ok(Self {
+            alphas: Alphas::from_lanes(alpha_x, alpha_y)?,
+        })
+    }
+
+    /// Slope parameter along the tangent (x).
+    #[inline]
+    #[must_use]
+    pub fn alpha_x(&self) -> R {
+        self.alphas.alpha_x
+    }
+
+    /// Slope parameter along the bitangent (y).
+    #[inline]
+    #[must_use]
+    pub fn alpha_y(&self) -> R {
+        self.alphas.alpha_y
+    }
+
+    /// `cos²θ + x² αx² + y² αy²` of a unit `w`: the radicand of the visibility denominators.
     #[inline(always)]
     fn root2(&self, w: Vec3<R>) -> R {
-        w.z * w.z + Ggx::stretched_sin2(self, w)
+        w.z * w.z + self.alphas.stretched_sin2(w)
     }
 }
 
-/// The GGX `Ndf` and `SmithLambda` bodies, on the forms of [`GgxForms`].
-macro_rules! ggx_formulas {
-    ($t:ident) => {
-        impl<R: Real> Ndf<R> for $t<R> {
-            #[inline(always)]
-            fn d(&self, wm: Vec3<R>) -> R {
-                let den = GgxForms::slope2_cos2(self, wm) + wm.z * wm.z;
-                let d = GgxForms::norm(self) / (den * den).max(tiny());
-                R::select(wm.z.gt(R::zero()), d, R::zero())
-            }
+impl<R: Real> Ndf<R> for Ggx<R> {
+    /// `ggx_d` on `x²/αx² + y²/αy²`.
+    #[inline(always)]
+    fn d(&self, wm: Vec3<R>) -> R {
+        ggx_d(self.alphas.norm, self.alphas.slope2_cos2(wm), wm.z)
+    }
 
-            /// `x²/αx² + y²/αy² + z²` is homogeneous of degree 2, so on `h = |h|·wm` the
-            /// stretched denominator is `len2` times that of `wm`:
-            /// `D = norm·len2² / (stretched(h))²`.
-            #[inline(always)]
-            fn d_fraction(&self, _wm: Vec3<R>, h: Vec3<R>, len2: R) -> (R, R) {
-                let den = GgxForms::slope2_cos2(self, h) + h.z * h.z;
-                let num = R::select(
-                    h.z.gt(R::zero()),
-                    GgxForms::norm(self) * len2 * len2,
-                    R::zero(),
-                );
-                (num, (den * den).max(tiny()))
-            }
-        }
-
-        impl<R: Real> SmithLambda<R> for $t<R> {
-            /// `Λ = (√(1 + t) − 1)/2 = t / (2 (1 + √(1 + t)))`, `t = α(w)² tan²θ`, written
-            /// without cancellation; `cos θ` is floored at 1e-15 so that `Λ(grazing)` is large
-            /// but finite.
-            #[inline(always)]
-            fn lambda(&self, w: Vec3<R>) -> R {
-                let t = GgxForms::stretched_sin2(self, w) / (w.z * w.z).max(tiny());
-                t / (R::from_f64(2.0) * (R::one() + (R::one() + t).sqrt()))
-            }
-
-            /// `cos θ Λ = (√(cos²θ + α(w)² sin²θ) − cos θ)/2 = s / (2 (√(cos²θ + s) + cos θ))`,
-            /// `s = x² αx² + y² αy²`; `α(w) sin θ / 2` at grazing.
-            #[inline(always)]
-            fn cos_lambda(&self, w: Vec3<R>) -> R {
-                let s = GgxForms::stretched_sin2(self, w);
-                let c = w.z.abs();
-                s / (R::from_f64(2.0) * ((c * c + s).sqrt() + c)).max(tiny())
-            }
-
-            /// `(cos θo √(cos²θi + sᵢ) + cos θi √(cos²θo + sₒ))/2`: see
-            /// [`SmithLambda::height_correlated_den`] (Heitz 2014's height-correlated G2 with
-            /// GGX's `Λ = (√(1 + α² tan²θ) − 1)/2`; the division-free form is the one in
-            /// Filament's docs). Unit `wi`, `wo`.
-            #[inline(always)]
-            fn height_correlated_den(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
-                let (ci, co) = (wi.z.max(R::zero()), wo.z.max(R::zero()));
-                let root_i = GgxForms::root2(self, wi).sqrt();
-                let root_o = GgxForms::root2(self, wo).sqrt();
-                (co * root_i + ci * root_o) * R::from_f64(0.5)
-            }
-
-            /// `(cos θ + √(cos²θ + s))/2`: see [`SmithLambda::separable_den`]. Unit `w`.
-            #[inline(always)]
-            fn separable_den(&self, w: Vec3<R>) -> R {
-                let c = w.z.max(R::zero());
-                (c + GgxForms::root2(self, w).sqrt()) * R::from_f64(0.5)
-            }
-        }
-    };
+    /// `x²/αx² + y²/αy² + z²` is homogeneous of degree 2, so on `h = |h|·wm` the
+    /// stretched denominator is `len2` times that of `wm`:
+    /// `D = norm·len2² / (stretched(h))²` (`ggx_d_fraction`).
+    #[inline(always)]
+    fn d_fraction(&self, _wm: Vec3<R>, h: Vec3<R>, len2: R) -> (R, R) {
+        ggx_d_fraction(self.alphas.norm, self.alphas.slope2_cos2(h), h.z, len2)
+    }
 }
 
-ggx_formulas!(Ggx);
-ggx_formulas!(GgxIsotropic);
+impl<R: Real> SmithLambda<R> for Ggx<R> {
+    /// `Λ = (√(1 + t) − 1)/2 = t / (2 (1 + √(1 + t)))`, `t = α(w)² tan²θ`, written
+    /// without cancellation; `cos θ` is floored at 1e-15 so that `Λ(grazing)` is large
+    /// but finite (`ggx_lambda`).
+    #[inline(always)]
+    fn lambda(&self, w: Vec3<R>) -> R {
+        ggx_lambda(self.alphas.stretched_sin2(w), w.z)
+    }
 
-splat_ndf!(GgxIsotropic {
-    alpha,
-    alpha2,
-    one_minus_alpha2,
-    inv_alpha2,
-    norm
-});
-splat_ndf!(BlinnPhong { shininess, norm });
-splat_ndf!(AshikhminShirley {
-    nu,
-    nv,
-    norm,
-    pdf_norm
-});
+    /// `cos θ Λ = (√(cos²θ + α(w)² sin²θ) − cos θ)/2 = s / (2 (√(cos²θ + s) + cos θ))`,
+    /// `s = x² αx² + y² αy²`; `α(w) sin θ / 2` at grazing (`ggx_cos_lambda`).
+    #[inline(always)]
+    fn cos_lambda(&self, w: Vec3<R>) -> R {
+        ggx_cos_lambda(self.alphas.stretched_sin2(w), w.z.abs())
+    }
+
+    /// `(cos θo √(cos²θi + sᵢ) + cos θi √(cos²θo + sₒ))/2`: see
+    /// [`SmithLambda::height_correlated_den`] and `ggx_height_correlated_den`. Unit `wi`,
+    /// `wo`.
+    #[inline(always)]
+    fn height_correlated_den(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
+        ggx_height_correlated_den(wi.z, wo.z, self.root2(wi), self.root2(wo))
+    }
+
+    /// `(cos θ + √(cos²θ + s))/2`: see [`SmithLambda::separable_den`] and
+    /// `ggx_separable_den`. Unit `w`.
+    #[inline(always)]
+    fn separable_den(&self, w: Vec3<R>) -> R {
+        ggx_separable_den(w.z, self.root2(w))
+    }
+}
+
+impl<R: Real> ProjectedAlpha<R> for Ggx<R> {
+    /// `α(w) = √((x² αx² + y² αy²)/(x² + y²))` (Heitz 2014, anisotropic Λ); at normal
+    /// incidence, where it is undefined and irrelevant, `√((αx² + αy²)/2)`
+    /// (`projected_alpha`).
+    #[inline(always)]
+    fn projected_alpha(&self, w: Vec3<R>) -> R {
+        projected_alpha(self.alphas.alpha_x2, self.alphas.alpha_y2, w)
+    }
+}
+
+impl<S: Scalar> Splat for Ggx<S> {
+    type On<L: Real> = Ggx<L>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Ggx<L> {
+        Ggx {
+            alphas: self.alphas.splat(),
+        }
+    }
+}
+
+/// GGX `D` from the stretched quadratic form `q = x²/αx² + y²/αy²` of `v = (x, y, z)`:
+///
+/// ```text
+/// D = norm / (q + z²)²,    norm = 1/(π αx αy);    0 for z ≤ 0
+/// ```
+///
+/// For a unit `v` this is [`Ggx`]'s `D(v)`; the denominator is floored at 1e-30 (the
+/// degenerate `v = 0`). Walter et al. 2007 eq. 33, in the stretched form of Heitz 2014.
+#[inline(always)]
+fn ggx_d<R: Real>(norm: R, q: R, z: R) -> R {
+    let den = q + z * z;
+    let d = norm / (den * den).max(tiny());
+    R::select(z.gt(R::zero()), d, R::zero())
+}
+
+/// GGX `D` on the unnormalized half vector `h = wi + wo` (`len2 = h·h`), as a fraction:
+///
+/// ```text
+/// D(h/|h|) = (norm · len2²) / (q_h + h_z²)²,    q_h = h_x²/αx² + h_y²/αy²;   0 for h_z ≤ 0
+/// ```
+///
+/// exact because the denominator is homogeneous of degree 2 in `h`: no square root, no
+/// division ([`Ndf::d_fraction`]).
+#[inline(always)]
+fn ggx_d_fraction<R: Real>(norm: R, q_h: R, h_z: R, len2: R) -> (R, R) {
+    let den = q_h + h_z * h_z;
+    let num = R::select(h_z.gt(R::zero()), norm * len2 * len2, R::zero());
+    (num, (den * den).max(tiny()))
+}
+
+/// GGX Smith `Λ` from `s = x² αx² + y² αy² = (α(w) sin θ)²` and `z = cos θ`:
+///
+/// ```text
+/// Λ = (√(1 + t) − 1)/2 = t / (2 (1 + √(1 + t))),    t = s / max(z², 1e-30) = α(w)² tan²θ
+/// ```
+///
+/// the second form without cancellation for small `t`; large but finite at grazing. Heitz
+/// 2014, eq. 86 (anisotropic through α(w), §5.2).
+#[inline(always)]
+fn ggx_lambda<R: Real>(s: R, z: R) -> R {
+    let t = s / (z * z).max(tiny());
+    t / (R::from_f64(2.0) * (R::one() + (R::one() + t).sqrt()))
+}
+
+/// GGX `cos θ · Λ` from `s = (α(w) sin θ)²` and `c = |cos θ|`:
+///
+/// ```text
+/// cos θ Λ = (√(c² + s) − c)/2 = s / (2 (√(c² + s) + c))
+/// ```
+///
+/// finite everywhere: `√s / 2 = α(w) sin θ / 2` at grazing, 0 at normal incidence.
+#[inline(always)]
+fn ggx_cos_lambda<R: Real>(s: R, c: R) -> R {
+    s / (R::from_f64(2.0) * ((c * c + s).sqrt() + c)).max(tiny())
+}
+
+/// The height-correlated visibility denominator of GGX, from the cosines and the radicands
+/// `rᵢ = cos²θi + sᵢ`, `rₒ = cos²θo + sₒ` (`s = (α(w) sin θ)²`):
+///
+/// ```text
+/// cos θi cos θo (1 + Λ(wi) + Λ(wo)) = (cos θo √rᵢ + cos θi √rₒ) / 2
+/// ```
+///
+/// (the `cos θi cos θo` terms cancel exactly, so there is no division; the form of
+/// Filament's docs for Heitz 2014's height-correlated G2). Cosines clamped at 0.
+#[inline(always)]
+fn ggx_height_correlated_den<R: Real>(cos_i: R, cos_o: R, root2_i: R, root2_o: R) -> R {
+    let (ci, co) = (cos_i.max(R::zero()), cos_o.max(R::zero()));
+    let (root_i, root_o) = (root2_i.sqrt(), root2_o.sqrt());
+    (co * root_i + ci * root_o) * R::from_f64(0.5)
+}
+
+/// The separable visibility factor of GGX from `cos θ` and the radicand `r = cos²θ + s`:
+///
+/// ```text
+/// cos θ (1 + Λ(w)) = (cos θ + √r) / 2
+/// ```
+///
+/// Cosine clamped at 0.
+#[inline(always)]
+fn ggx_separable_den<R: Real>(cos: R, root2: R) -> R {
+    let c = cos.max(R::zero());
+    (c + root2.sqrt()) * R::from_f64(0.5)
+}
 
 /// The isotropic GGX distribution: [`Ggx`] with `αx = αy = α`, specialized.
 ///
@@ -511,12 +483,11 @@ splat_ndf!(AshikhminShirley {
 /// √(cos²θ + α² sin²θ) = √(α² + (1 − α²) cos²θ)        (the visibility radicand, unit w)
 /// ```
 ///
-/// The same formulas as [`Ggx`] (one body, written once for both types); what it saves is the
-/// anisotropic bookkeeping: the visibility radicand is one multiply-add of `cos²θ`, the
-/// projected roughness of [`ProjectedAlpha`] is the constant `α` (no square root, no
-/// division), and fewer constants are live in registers. A scene whose materials are all
-/// isotropic — most are — should use it; the values agree with `Ggx::new(alpha)` to a few
-/// ULP (tested).
+/// The same formula functions as [`Ggx`], called with cheaper forms: the visibility
+/// radicand is one multiply-add of `cos²θ`, the projected roughness of [`ProjectedAlpha`]
+/// is the constant `α` (no square root, no division), and fewer constants are live in
+/// registers. A scene whose materials are all isotropic — most are — should use it; the
+/// values agree with `Ggx::new(alpha)` to a few ULP (tested).
 ///
 /// Domain: `alpha ∈ [1e-4, 1]` (see the [module docs](self)); directions are unit vectors.
 ///
@@ -588,25 +559,63 @@ impl<R: Real> GgxIsotropic<R> {
     pub fn alpha(&self) -> R {
         self.alpha
     }
-}
 
-impl<R: Real> GgxForms<R> for GgxIsotropic<R> {
-    #[inline(always)]
-    fn norm(&self) -> R {
-        self.norm
-    }
+    /// `(x² + y²)/α²` of a (possibly unnormalized) `v`.
     #[inline(always)]
     fn slope2_cos2(&self, v: Vec3<R>) -> R {
         (v.x * v.x + v.y * v.y) * self.inv_alpha2
     }
+
+    /// `(x² + y²) α²` = `(α sin θ)²` of a unit `w`.
     #[inline(always)]
     fn stretched_sin2(&self, w: Vec3<R>) -> R {
         (w.x * w.x + w.y * w.y) * self.alpha2
     }
+
     /// `cos²θ + α² sin²θ = α² + (1 − α²) cos²θ` for a unit `w`.
     #[inline(always)]
     fn root2(&self, w: Vec3<R>) -> R {
         (w.z * w.z).mul_add(self.one_minus_alpha2, self.alpha2)
+    }
+}
+
+impl<R: Real> Ndf<R> for GgxIsotropic<R> {
+    /// `ggx_d` on `(x² + y²)/α²`.
+    #[inline(always)]
+    fn d(&self, wm: Vec3<R>) -> R {
+        ggx_d(self.norm, self.slope2_cos2(wm), wm.z)
+    }
+
+    /// `ggx_d_fraction` on `(h_x² + h_y²)/α²`.
+    #[inline(always)]
+    fn d_fraction(&self, _wm: Vec3<R>, h: Vec3<R>, len2: R) -> (R, R) {
+        ggx_d_fraction(self.norm, self.slope2_cos2(h), h.z, len2)
+    }
+}
+
+impl<R: Real> SmithLambda<R> for GgxIsotropic<R> {
+    /// `ggx_lambda` on `s = (x² + y²) α²`.
+    #[inline(always)]
+    fn lambda(&self, w: Vec3<R>) -> R {
+        ggx_lambda(self.stretched_sin2(w), w.z)
+    }
+
+    /// `ggx_cos_lambda` on `s = (x² + y²) α²`.
+    #[inline(always)]
+    fn cos_lambda(&self, w: Vec3<R>) -> R {
+        ggx_cos_lambda(self.stretched_sin2(w), w.z.abs())
+    }
+
+    /// `ggx_height_correlated_den` on the radicands `α² + (1 − α²) cos²θ`.
+    #[inline(always)]
+    fn height_correlated_den(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
+        ggx_height_correlated_den(wi.z, wo.z, self.root2(wi), self.root2(wo))
+    }
+
+    /// `ggx_separable_den` on the radicand `α² + (1 − α²) cos²θ`.
+    #[inline(always)]
+    fn separable_den(&self, w: Vec3<R>) -> R {
+        ggx_separable_den(w.z, self.root2(w))
     }
 }
 
@@ -618,11 +627,21 @@ impl<R: Real> ProjectedAlpha<R> for GgxIsotropic<R> {
     }
 }
 
+splat_ndf!(GgxIsotropic {
+    alpha,
+    alpha2,
+    one_minus_alpha2,
+    inv_alpha2,
+    norm
+});
+
 impl<R: Real> From<GgxIsotropic<R>> for Ggx<R> {
     /// The same distribution as an (anisotropic-capable) [`Ggx`] with `αx = αy = α`.
     #[inline]
     fn from(iso: GgxIsotropic<R>) -> Self {
-        Ggx::from_valid(iso.alpha, iso.alpha)
+        Ggx {
+            alphas: Alphas::from_valid(iso.alpha, iso.alpha),
+        }
     }
 }
 
@@ -643,6 +662,8 @@ impl<R: Real> From<GgxIsotropic<R>> for Ggx<R> {
 /// every accepted `alpha ≤ 1`, so `z` is floored there to keep `0/0` out of the result.
 ///
 /// Λ uses [`erfc`] (relative error < 1.2e-7), so `G1 = 1/(1 + Λ)` is within 1e-7 of exact.
+/// The formulas are the functions `beckmann_d`, `beckmann_cos_lambda` below the type in
+/// `src/ndf.rs`.
 ///
 /// Domain: `alpha_x, alpha_y ∈ [1e-4, 1]` (see the [module docs](self)).
 ///
@@ -662,38 +683,79 @@ impl<R: Real> From<GgxIsotropic<R>> for Ggx<R> {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Beckmann<R> {
-    alpha_x: R,
-    alpha_y: R,
-    alpha_x2: R,
-    alpha_y2: R,
-    inv_alpha_x2: R,
-    inv_alpha_y2: R,
-    /// `1/(π αx αy)`.
-    norm: R,
+    alphas: Alphas<R>,
 }
 
-impl<R: Real> Ndf<R> for Beckmann<R> {
-    #[inline(always)]
-    fn d(&self, wm: Vec3<R>) -> R {
-        let z = wm.z.max(R::from_f64(1e-3));
-        let inv_z2 = (z * z).recip();
-        let e = (-(self.slope2_cos2(wm) * inv_z2)).exp();
-        let d = self.norm * e * inv_z2 * inv_z2;
-        R::select(wm.z.gt(R::zero()), d, R::zero())
+impl<S: Scalar> Beckmann<S> {
+    /// Isotropic distribution with slope parameter `alpha ∈ [1e-4, 1]`.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming `alpha`, for `alpha` outside
+    /// `[1e-4, 1]`.
+    #[inline]
+    pub fn new(alpha: S) -> Result<Self, Error> {
+        Ok(Self {
+            alphas: Alphas::isotropic(alpha)?,
+        })
+    }
+
+    /// Anisotropic distribution: `alpha_x` along the tangent, `alpha_y` along the
+    /// bitangent, each in `[1e-4, 1]`.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming the offending parameter.
+    #[inline]
+    pub fn anisotropic(alpha_x: S, alpha_y: S) -> Result<Self, Error> {
+        Self::from_lanes(alpha_x, alpha_y)
+    }
+
+    /// Isotropic distribution from perceptual roughness `roughness ∈ [0.01, 1]`,
+    /// `alpha = roughness²` ([`roughness_to_alpha`]).
+    ///
+    /// # Errors
+    /// As [`Self::new`] for the resulting `alpha` (so `roughness < 0.01` is rejected
+    /// and reported as `alpha`).
+    #[inline]
+    pub fn from_roughness(roughness: S) -> Result<Self, Error> {
+        Self::new(roughness * roughness)
     }
 }
 
-/// `cos θ · Λ_Beckmann` from `c = |cos θ|` and `σ = α(w) sin θ`:
-/// `(σ e^(−a²)/√π − c erfc(a)) / 2`, `a = c/σ`, clamped at 0 against rounding.
-#[inline(always)]
-fn beckmann_cos_lambda<R: Real>(c: R, sigma: R) -> R {
-    let a = c / sigma.max(tiny());
-    let e = (-(a * a)).exp();
-    let v = (sigma * e * R::from_f64(FRAC_1_SQRT_PI) - c * erfc_nonneg(a)) * R::from_f64(0.5);
-    v.max(R::zero())
+impl<R: Real> Beckmann<R> {
+    /// One (possibly different) material per lane: every lane of `alpha_x` and
+    /// `alpha_y` is validated as in [`Self::anisotropic`].
+    ///
+    /// # Errors
+    /// The first offending lane's parameter.
+    #[inline]
+    pub fn from_lanes(alpha_x: R, alpha_y: R) -> Result<Self, Error> {
+        Ok(Self {
+            alphas: Alphas::from_lanes(alpha_x, alpha_y)?,
+        })
+    }
+
+    /// Slope parameter along the tangent (x).
+    #[inline]
+    #[must_use]
+    pub fn alpha_x(&self) -> R {
+        self.alphas.alpha_x
+    }
+
+    /// Slope parameter along the bitangent (y).
+    #[inline]
+    #[must_use]
+    pub fn alpha_y(&self) -> R {
+        self.alphas.alpha_y
+    }
 }
 
-const FRAC_1_SQRT_PI: f64 = core::f64::consts::FRAC_2_SQRT_PI * 0.5;
+impl<R: Real> Ndf<R> for Beckmann<R> {
+    /// `beckmann_d` on `x²/αx² + y²/αy²`.
+    #[inline(always)]
+    fn d(&self, wm: Vec3<R>) -> R {
+        beckmann_d(self.alphas.norm, self.alphas.slope2_cos2(wm), wm.z)
+    }
+}
 
 impl<R: Real> SmithLambda<R> for Beckmann<R> {
     /// `Λ = cosΛ / cos θ` ([`SmithLambda::cos_lambda`]) with `cos θ` floored at 1e-15:
@@ -704,11 +766,164 @@ impl<R: Real> SmithLambda<R> for Beckmann<R> {
     }
 
     /// `cos θ Λ = (α(w) sin θ e^(−a²)/√π − cos θ erfc(a)) / 2`, `a = cos θ/(α(w) sin θ)`;
-    /// `α(w) sin θ/(2√π)` at grazing, 0 at normal incidence.
+    /// `α(w) sin θ/(2√π)` at grazing, 0 at normal incidence (`beckmann_cos_lambda`).
     #[inline(always)]
     fn cos_lambda(&self, w: Vec3<R>) -> R {
-        beckmann_cos_lambda(w.z.abs(), self.stretched_sin2(w).sqrt())
+        beckmann_cos_lambda(w.z.abs(), self.alphas.stretched_sin2(w).sqrt())
     }
+}
+
+impl<R: Real> ProjectedAlpha<R> for Beckmann<R> {
+    /// `α(w) = √((x² αx² + y² αy²)/(x² + y²))` (Heitz 2014, anisotropic Λ); at normal
+    /// incidence, where it is undefined and irrelevant, `√((αx² + αy²)/2)`
+    /// (`projected_alpha`).
+    #[inline(always)]
+    fn projected_alpha(&self, w: Vec3<R>) -> R {
+        projected_alpha(self.alphas.alpha_x2, self.alphas.alpha_y2, w)
+    }
+}
+
+impl<S: Scalar> Splat for Beckmann<S> {
+    type On<L: Real> = Beckmann<L>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Beckmann<L> {
+        Beckmann {
+            alphas: self.alphas.splat(),
+        }
+    }
+}
+
+/// Beckmann `D` from the stretched quadratic form `q = x²/αx² + y²/αy²` and `z = cos θm`:
+///
+/// ```text
+/// D = norm · exp(−q/z²) / z⁴,    norm = 1/(π αx αy);    0 for z ≤ 0
+/// ```
+///
+/// with `z` floored at 1e-3 (where the exponential has underflowed to 0 for every accepted
+/// `alpha`; see [`Beckmann`]). Walter et al. 2007 eq. 25, in stretched form.
+#[inline(always)]
+fn beckmann_d<R: Real>(norm: R, q: R, z: R) -> R {
+    let zf = z.max(R::from_f64(1e-3));
+    let inv_z2 = (zf * zf).recip();
+    let e = (-(q * inv_z2)).exp();
+    let d = norm * e * inv_z2 * inv_z2;
+    R::select(z.gt(R::zero()), d, R::zero())
+}
+
+/// `cos θ · Λ_Beckmann` from `c = |cos θ|` and `σ = α(w) sin θ`:
+///
+/// ```text
+/// cos θ Λ = (σ e^(−a²)/√π − c erfc(a)) / 2,    a = c/σ
+/// ```
+///
+/// clamped at 0 against rounding (Heitz 2014, eq. 80, multiplied by `cos θ` so that it stays
+/// finite at grazing: `σ/(2√π)` there).
+#[inline(always)]
+fn beckmann_cos_lambda<R: Real>(c: R, sigma: R) -> R {
+    let a = c / sigma.max(tiny());
+    let e = (-(a * a)).exp();
+    let v = (sigma * e * R::from_f64(FRAC_1_SQRT_PI) - c * erfc_nonneg(a)) * R::from_f64(0.5);
+    v.max(R::zero())
+}
+
+const FRAC_1_SQRT_PI: f64 = core::f64::consts::FRAC_2_SQRT_PI * 0.5;
+
+// ---------------------------------------------------------------------------------------------
+// The slope parameters of GGX and Beckmann
+// ---------------------------------------------------------------------------------------------
+
+/// The per-material constants of a distribution with slope parameters `αx`, `αy` ([`Ggx`],
+/// [`Beckmann`]) and the two quadratic forms of a direction `v = (x, y, z)` their formulas
+/// are written on:
+///
+/// ```text
+/// slope2_cos2(v)    = x²/αx² + y²/αy²      (= cos²θ tan²θ / α(v)² for a unit v)
+/// stretched_sin2(w) = x² αx² + y² αy²      (= (α(w) sin θ)², Heitz 2014 §5.2)
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Alphas<R> {
+    alpha_x: R,
+    alpha_y: R,
+    alpha_x2: R,
+    alpha_y2: R,
+    inv_alpha_x2: R,
+    inv_alpha_y2: R,
+    /// `1/(π αx αy)`.
+    norm: R,
+}
+
+splat_ndf!(Alphas {
+    alpha_x,
+    alpha_y,
+    alpha_x2,
+    alpha_y2,
+    inv_alpha_x2,
+    inv_alpha_y2,
+    norm
+});
+
+impl<R: Real> Alphas<R> {
+    /// `alpha_x`, `alpha_y ∈ [1e-4, 1]` in every lane, each named in the error.
+    #[inline]
+    fn from_lanes(alpha_x: R, alpha_y: R) -> Result<Self, Error> {
+        check_lanes("alpha_x", alpha_x, ALPHA_DOMAIN, MIN_ALPHA, MAX_ALPHA)?;
+        check_lanes("alpha_y", alpha_y, ALPHA_DOMAIN, MIN_ALPHA, MAX_ALPHA)?;
+        Ok(Self::from_valid(alpha_x, alpha_y))
+    }
+
+    /// One `alpha ∈ [1e-4, 1]` for both axes, named `alpha` in the error.
+    #[inline]
+    fn isotropic(alpha: R) -> Result<Self, Error> {
+        check_lanes("alpha", alpha, ALPHA_DOMAIN, MIN_ALPHA, MAX_ALPHA)?;
+        Ok(Self::from_valid(alpha, alpha))
+    }
+
+    /// The constants of already validated slope parameters.
+    #[inline]
+    fn from_valid(alpha_x: R, alpha_y: R) -> Self {
+        let (alpha_x2, alpha_y2) = (alpha_x * alpha_x, alpha_y * alpha_y);
+        Self {
+            alpha_x,
+            alpha_y,
+            alpha_x2,
+            alpha_y2,
+            inv_alpha_x2: alpha_x2.recip(),
+            inv_alpha_y2: alpha_y2.recip(),
+            norm: R::frac_1_pi() / (alpha_x * alpha_y),
+        }
+    }
+
+    /// `x²/αx² + y²/αy²` of a (possibly unnormalized) `v`.
+    #[inline(always)]
+    fn slope2_cos2(&self, v: Vec3<R>) -> R {
+        v.x * v.x * self.inv_alpha_x2 + v.y * v.y * self.inv_alpha_y2
+    }
+
+    /// `x² αx² + y² αy²` = `(α(w) sin θ)²` of a unit `w`.
+    #[inline(always)]
+    fn stretched_sin2(&self, w: Vec3<R>) -> R {
+        w.x * w.x * self.alpha_x2 + w.y * w.y * self.alpha_y2
+    }
+}
+
+/// The projected roughness `α(w)` of slope parameters `αx`, `αy` (given squared):
+///
+/// ```text
+/// α(w) = √((x² αx² + y² αy²)/(x² + y²));    √((αx² + αy²)/2) where x² + y² ≤ 1e-30
+/// ```
+///
+/// (at normal incidence it is undefined and irrelevant). Heitz 2014, §5.2.
+#[inline(always)]
+fn projected_alpha<R: Real>(alpha_x2: R, alpha_y2: R, w: Vec3<R>) -> R {
+    let sin2 = w.x * w.x + w.y * w.y;
+    let normal = sin2.le(tiny());
+    let stretched = w.x * w.x * alpha_x2 + w.y * w.y * alpha_y2;
+    let a2 = R::select(
+        normal,
+        (alpha_x2 + alpha_y2) * R::from_f64(0.5),
+        stretched / sin2.max(tiny()),
+    );
+    a2.sqrt()
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -893,6 +1108,8 @@ impl<R: Real> Ndf<R> for BlinnPhong<R> {
     }
 }
 
+splat_ndf!(BlinnPhong { shininess, norm });
+
 // ---------------------------------------------------------------------------------------------
 // Ashikhmin-Shirley
 // ---------------------------------------------------------------------------------------------
@@ -1023,6 +1240,13 @@ impl<R: Real> Ndf<R> for AshikhminShirley<R> {
     }
 }
 
+splat_ndf!(AshikhminShirley {
+    nu,
+    nv,
+    norm,
+    pdf_norm
+});
+
 // ---------------------------------------------------------------------------------------------
 // Conversions
 // ---------------------------------------------------------------------------------------------
@@ -1106,87 +1330,6 @@ pub fn alpha_to_roughness<R: Real>(alpha: R) -> R {
 #[must_use]
 pub fn beckmann_alpha_to_ggx_alpha<R: Real>(alpha: R) -> R {
     alpha
-}
-
-// ---------------------------------------------------------------------------------------------
-// Blinn 1977
-// ---------------------------------------------------------------------------------------------
-
-/// Blinn's first distribution (the "Phong" one), un-normalized: `D1 = cos^c1 θm`, peak 1.
-///
-/// `theta_m` is the angle between `H` and `N` (Blinn writes α; here `alpha` is reserved for
-/// the slope parameter). Compare with [`BlinnPhong`], its normalized form:
-/// `D_BP = (c1 + 2)/(2π) · D1`. Domain: `cos_theta_m ∈ [0, 1]`, `c1 ≥ 0`.
-///
-/// Reference: J. F. Blinn, "Models of light reflection for computer synthesized pictures",
-/// SIGGRAPH 1977, §"Specular reflection", D1.
-#[inline]
-#[must_use]
-pub fn blinn1977_d1<R: Real>(cos_theta_m: R, c1: R) -> R {
-    cos_theta_m.max(R::zero()).pow(c1)
-}
-
-/// Blinn's Gaussian distribution, un-normalized: `D2 = exp(−(c2 θm)²)`, peak 1.
-///
-/// ```text
-/// D2 = e^(−(c2 θm)²),     θm = angle between H and N (radians)
-/// ```
-///
-/// The seed slide prints `e^(−(α c²)²)`: an OCR/slide garble of `e^(−(α c₂)²)` (the
-/// subscript became a square). Note the argument is the *angle* θm, not `tan θm` as in
-/// Beckmann: for small angles `D2 ≈ π α² D_Beckmann` with `c2 = 1/α`, and they differ at
-/// large angles. Domain: `theta_m ∈ [0, π/2]`, `c2 > 0`.
-///
-/// Reference: J. F. Blinn, SIGGRAPH 1977, D2 (after Torrance & Sparrow 1967).
-#[inline]
-#[must_use]
-pub fn blinn1977_d2<R: Real>(theta_m: R, c2: R) -> R {
-    (-(c2 * theta_m).sqr()).exp()
-}
-
-/// Blinn's Trowbridge-Reitz distribution, un-normalized: peak 1.
-///
-/// ```text
-/// D3 = (c3² / (cos²θm (c3² − 1) + 1))²
-/// ```
-///
-/// `c3` is the eccentricity of the microfacet ellipsoids (0 shiny, 1 dull). It is GGX up to
-/// a constant: `D3 = π c3² · D_GGX` with `alpha = c3` (tested). Domain: `cos_theta_m ∈ [0, 1]`,
-/// `c3 ∈ (0, 1]`.
-///
-/// Reference: J. F. Blinn, SIGGRAPH 1977, D3; T. S. Trowbridge, K. P. Reitz, JOSA 1975.
-#[inline]
-#[must_use]
-pub fn blinn1977_d3<R: Real>(cos_theta_m: R, c3: R) -> R {
-    // cos²θ (c3² − 1) + 1 = c3² cos²θ + (1 − cos θ)(1 + cos θ), without the cancellation
-    // that loses the peak value for small c3.
-    let c32 = c3 * c3;
-    let c = cos_theta_m;
-    let den = c32 * c * c + (R::one() - c) * (R::one() + c);
-    (c32 / den.max(tiny())).sqr()
-}
-
-/// Blinn's constants from the half-intensity angle `beta` (where each of D1, D2, D3 falls to
-/// 1/2): `(c1, c2, c3)`.
-///
-/// ```text
-/// c1 = −ln 2 / ln cos β,     c2 = √(ln 2) / β,     c3 = √((1 − cos²β) / (√2 − cos²β))
-/// ```
-///
-/// (Solving `Dk(β) = 1/2`; Blinn quotes this parameterization in the text.) Domain:
-/// `beta ∈ (0, π/2)`.
-///
-/// Reference: J. F. Blinn, SIGGRAPH 1977.
-#[inline]
-#[must_use]
-pub fn blinn1977_constants_from_half_angle<R: Real>(beta: R) -> (R, R, R) {
-    let ln2 = R::from_f64(core::f64::consts::LN_2);
-    let c = beta.cos();
-    let c1 = -ln2 / c.ln();
-    let c2 = ln2.sqrt() / beta;
-    let c2c = c * c;
-    let c3 = ((R::one() - c2c) / (R::from_f64(core::f64::consts::SQRT_2) - c2c)).sqrt();
-    (c1, c2, c3)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1290,5 +1433,100 @@ impl<R: Real> ProjectedAlpha<R> for AnyNdf<R> {
     #[inline(always)]
     fn projected_alpha(&self, w: Vec3<R>) -> R {
         on_any_ndf!(self, n => n.projected_alpha(w))
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reference-only distributions
+// ---------------------------------------------------------------------------------------------
+
+/// Distributions from the literature kept for comparison, not for rendering: Blinn's three
+/// un-normalized distributions of 1977 (peak value 1) and the constants that give each a
+/// half-intensity angle. They do not implement [`Ndf`](crate::ndf::Ndf); their normalized
+/// counterparts do (`D1` ↔ [`BlinnPhong`](crate::ndf::BlinnPhong), `D3` ↔
+/// [`Ggx`](crate::ndf::Ggx), `D2` ≈ [`Beckmann`](crate::ndf::Beckmann) for small angles,
+/// each relation tested in `tests/ndf.rs`).
+///
+/// Reference: J. F. Blinn, "Models of light reflection for computer synthesized pictures",
+/// SIGGRAPH 1977.
+pub mod reference {
+    use super::tiny;
+    use crate::Real;
+
+    /// Blinn's first distribution (the "Phong" one), un-normalized: `D1 = cos^c1 θm`, peak 1.
+    ///
+    /// `theta_m` is the angle between `H` and `N` (Blinn writes α; here `alpha` is reserved for
+    /// the slope parameter). Compare with [`BlinnPhong`](super::BlinnPhong), its normalized form:
+    /// `D_BP = (c1 + 2)/(2π) · D1`. Domain: `cos_theta_m ∈ [0, 1]`, `c1 ≥ 0`.
+    ///
+    /// Reference: J. F. Blinn, "Models of light reflection for computer synthesized pictures",
+    /// SIGGRAPH 1977, §"Specular reflection", D1.
+    #[inline]
+    #[must_use]
+    pub fn blinn1977_d1<R: Real>(cos_theta_m: R, c1: R) -> R {
+        cos_theta_m.max(R::zero()).pow(c1)
+    }
+
+    /// Blinn's Gaussian distribution, un-normalized: `D2 = exp(−(c2 θm)²)`, peak 1.
+    ///
+    /// ```text
+    /// D2 = e^(−(c2 θm)²),     θm = angle between H and N (radians)
+    /// ```
+    ///
+    /// The seed slide prints `e^(−(α c²)²)`: an OCR/slide garble of `e^(−(α c₂)²)` (the
+    /// subscript became a square). Note the argument is the *angle* θm, not `tan θm` as in
+    /// Beckmann: for small angles `D2 ≈ π α² D_Beckmann` with `c2 = 1/α`, and they differ at
+    /// large angles. Domain: `theta_m ∈ [0, π/2]`, `c2 > 0`.
+    ///
+    /// Reference: J. F. Blinn, SIGGRAPH 1977, D2 (after Torrance & Sparrow 1967).
+    #[inline]
+    #[must_use]
+    pub fn blinn1977_d2<R: Real>(theta_m: R, c2: R) -> R {
+        (-(c2 * theta_m).sqr()).exp()
+    }
+
+    /// Blinn's Trowbridge-Reitz distribution, un-normalized: peak 1.
+    ///
+    /// ```text
+    /// D3 = (c3² / (cos²θm (c3² − 1) + 1))²
+    /// ```
+    ///
+    /// `c3` is the eccentricity of the microfacet ellipsoids (0 shiny, 1 dull). It is GGX up to
+    /// a constant: `D3 = π c3² · D_GGX` with `alpha = c3` (tested). Domain: `cos_theta_m ∈ [0, 1]`,
+    /// `c3 ∈ (0, 1]`.
+    ///
+    /// Reference: J. F. Blinn, SIGGRAPH 1977, D3; T. S. Trowbridge, K. P. Reitz, JOSA 1975.
+    #[inline]
+    #[must_use]
+    pub fn blinn1977_d3<R: Real>(cos_theta_m: R, c3: R) -> R {
+        // cos²θ (c3² − 1) + 1 = c3² cos²θ + (1 − cos θ)(1 + cos θ), without the cancellation
+        // that loses the peak value for small c3.
+        let c32 = c3 * c3;
+        let c = cos_theta_m;
+        let den = c32 * c * c + (R::one() - c) * (R::one() + c);
+        (c32 / den.max(tiny())).sqr()
+    }
+
+    /// Blinn's constants from the half-intensity angle `beta` (where each of D1, D2, D3 falls to
+    /// 1/2): `(c1, c2, c3)`.
+    ///
+    /// ```text
+    /// c1 = −ln 2 / ln cos β,     c2 = √(ln 2) / β,     c3 = √((1 − cos²β) / (√2 − cos²β))
+    /// ```
+    ///
+    /// (Solving `Dk(β) = 1/2`; Blinn quotes this parameterization in the text.) Domain:
+    /// `beta ∈ (0, π/2)`.
+    ///
+    /// Reference: J. F. Blinn, SIGGRAPH 1977.
+    #[inline]
+    #[must_use]
+    pub fn blinn1977_constants_from_half_angle<R: Real>(beta: R) -> (R, R, R) {
+        let ln2 = R::from_f64(core::f64::consts::LN_2);
+        let c = beta.cos();
+        let c1 = -ln2 / c.ln();
+        let c2 = ln2.sqrt() / beta;
+        let c2c = c * c;
+        let c3 = ((R::one() - c2c) / (R::from_f64(core::f64::consts::SQRT_2) - c2c)).sqrt();
+        (c1, c2, c3)
     }
 }

@@ -1395,7 +1395,7 @@ struct BlinnD2 {
 }
 impl BlinnD2 {
     fn new(c2: f64) -> Self {
-        let g = |t: f64| brdf::ndf::blinn1977_d2(t, c2) * t.cos() * t.sin();
+        let g = |t: f64| brdf::ndf::reference::blinn1977_d2(t, c2) * t.cos() * t.sin();
         let w = 1.0 / c2;
         let breaks: Vec<f64> = [0.0, 0.5 * w, w, 2.0 * w, 4.0 * w, FRAC_PI_2]
             .into_iter()
@@ -1412,7 +1412,7 @@ impl brdf::ndf::Ndf<f64> for BlinnD2 {
     fn d(&self, wm: Vec3<f64>) -> f64 {
         let t = wm.x.hypot(wm.y).atan2(wm.z);
         if wm.z > 0.0 {
-            self.norm * brdf::ndf::blinn1977_d2(t, self.c2)
+            self.norm * brdf::ndf::reference::blinn1977_d2(t, self.c2)
         } else {
             0.0
         }

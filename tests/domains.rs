@@ -1032,7 +1032,7 @@ fn reported_parameters_are_rejected_with_their_domain() {
     // Messages in short form.
     assert_eq!(
         format!("{}", Ggx::new(1e-5_f32).unwrap_err()),
-        "parameter `alpha_x` = 1e-5 is outside its domain [1e-4, 1]"
+        "parameter `alpha` = 1e-5 is outside its domain [1e-4, 1]"
     );
     assert_eq!(
         format!("{}", Conductor::new([1e-30_f64], [1.0]).unwrap_err()),

@@ -410,15 +410,15 @@ fn roughness_alpha_round_trip() {
 #[test]
 fn blinn_1977_distributions() {
     for &beta in &[0.05, 0.2, 0.5, 1.0] {
-        let (c1, c2, c3) = ndf::blinn1977_constants_from_half_angle(beta);
+        let (c1, c2, c3) = ndf::reference::blinn1977_constants_from_half_angle(beta);
         let cb = f64::cos(beta);
-        assert_abs_diff_eq!(ndf::blinn1977_d1(cb, c1), 0.5, epsilon = 1e-14);
-        assert_abs_diff_eq!(ndf::blinn1977_d2(beta, c2), 0.5, epsilon = 1e-14);
-        assert_abs_diff_eq!(ndf::blinn1977_d3(cb, c3), 0.5, epsilon = 1e-14);
+        assert_abs_diff_eq!(ndf::reference::blinn1977_d1(cb, c1), 0.5, epsilon = 1e-14);
+        assert_abs_diff_eq!(ndf::reference::blinn1977_d2(beta, c2), 0.5, epsilon = 1e-14);
+        assert_abs_diff_eq!(ndf::reference::blinn1977_d3(cb, c3), 0.5, epsilon = 1e-14);
         for d in [
-            ndf::blinn1977_d1(1.0, c1),
-            ndf::blinn1977_d2(0.0, c2),
-            ndf::blinn1977_d3(1.0, c3),
+            ndf::reference::blinn1977_d1(1.0, c1),
+            ndf::reference::blinn1977_d2(0.0, c2),
+            ndf::reference::blinn1977_d3(1.0, c3),
         ] {
             assert!((d - 1.0).abs() < 1e-15, "peak {d}");
         }
@@ -429,7 +429,7 @@ fn blinn_1977_distributions() {
         for &th in &[0.0, 0.01, 0.3, 1.0, 1.5] {
             let (s, c) = f64::sin_cos(th);
             let m = Vec3::new(s, 0.0, c);
-            let d3 = ndf::blinn1977_d3(c, c3);
+            let d3 = ndf::reference::blinn1977_d3(c, c3);
             assert!(
                 (d3 / (PI * c3 * c3 * g.d(m)) - 1.0).abs() < 1e-12,
                 "c3={c3} θ={th}"
@@ -440,7 +440,7 @@ fn blinn_1977_distributions() {
     let m = Vec3::new(0.6, 0.0, 0.8);
     assert_abs_diff_eq!(
         bp.d(m),
-        22.0 / (2.0 * PI) * ndf::blinn1977_d1(0.8, 20.0),
+        22.0 / (2.0 * PI) * ndf::reference::blinn1977_d1(0.8, 20.0),
         epsilon = 1e-15
     );
     // D2 (Gaussian in the angle) ≈ π α² D_Beckmann (Gaussian in tan θ) near the peak only.
@@ -448,7 +448,7 @@ fn blinn_1977_distributions() {
     let b = Beckmann::<f64>::new(a).unwrap();
     for &(th, tol) in &[(0.01, 1e-3), (0.05, 5e-3), (0.1, 2e-2)] {
         let (s, c) = f64::sin_cos(th);
-        let r = ndf::blinn1977_d2(th, 1.0 / a) / (PI * a * a * b.d(Vec3::new(s, 0.0, c)));
+        let r = ndf::reference::blinn1977_d2(th, 1.0 / a) / (PI * a * a * b.d(Vec3::new(s, 0.0, c)));
         assert!((r - 1.0).abs() < tol, "θ={th}: ratio {r}");
     }
 }
@@ -467,7 +467,7 @@ fn constructors_validate() {
     assert!(Beckmann::<f64>::new(1e-4).is_ok() && Beckmann::<f64>::new(1.0).is_ok());
     assert!(matches!(
         Ggx::<f64>::new(f64::NAN),
-        Err(Error::NotFinite { param: "alpha_x" })
+        Err(Error::NotFinite { param: "alpha" })
     ));
     assert!(matches!(
         Beckmann::<f64>::anisotropic(0.5, 0.0),
@@ -493,6 +493,49 @@ fn constructors_validate() {
     let lanes = brdf::f32x4::new([0.1, 0.2, 0.3, 0.4]);
     let g = Ggx::<brdf::f32x4>::from_lanes(lanes, lanes).unwrap();
     assert_eq!(g.alpha_y().lane(2), 0.3);
+}
+
+/// The isotropic constructors name their parameter `alpha`, as their signature and docs do
+/// (they reported `alpha_x` before); the anisotropic ones name the offending axis. A
+/// rejected roughness is reported as the `alpha` it maps to.
+#[test]
+fn isotropic_constructors_name_alpha() {
+    use brdf::Error;
+    let out = |param: &'static str, value: f64| Error::OutOfDomain {
+        param,
+        value,
+        domain: "[1e-4, 1]",
+    };
+    assert_eq!(Ggx::<f64>::new(0.0).unwrap_err(), out("alpha", 0.0));
+    assert_eq!(Beckmann::<f64>::new(0.0).unwrap_err(), out("alpha", 0.0));
+    assert_eq!(GgxIsotropic::<f64>::new(0.0).unwrap_err(), out("alpha", 0.0));
+    assert_eq!(Ggx::<f32>::new(2.0).unwrap_err(), out("alpha", 2.0));
+    assert_eq!(
+        Beckmann::<f64>::from_roughness(0.005).unwrap_err(),
+        out("alpha", 0.005 * 0.005)
+    );
+    assert_eq!(
+        Ggx::<f64>::from_roughness(f64::NAN).unwrap_err(),
+        Error::NotFinite { param: "alpha" }
+    );
+    assert_eq!(
+        Ggx::<f64>::anisotropic(0.0, 0.5).unwrap_err(),
+        out("alpha_x", 0.0)
+    );
+    assert_eq!(
+        Beckmann::<f64>::anisotropic(0.5, 1.5).unwrap_err(),
+        out("alpha_y", 1.5)
+    );
+    assert_eq!(
+        format!("{}", Ggx::new(1e-5_f32).unwrap_err()),
+        "parameter `alpha` = 1e-5 is outside its domain [1e-4, 1]"
+    );
+    // The isotropic constructor builds the same constants as the anisotropic one.
+    for a in [1e-4, 0.3, 1.0] {
+        assert_eq!(Ggx::<f64>::new(a), Ggx::anisotropic(a, a));
+        assert_eq!(Beckmann::<f32>::new(a as f32), Beckmann::anisotropic(a as f32, a as f32));
+        assert_eq!(Ok(Ggx::from(GgxIsotropic::<f64>::new(a).unwrap())), Ggx::new(a));
+    }
 }
 
 fn all_ndfs_finite<R: Real>(w: Vec3<R>, alpha: R::Scalar, s: R::Scalar) -> Result<(), String>
@@ -705,24 +748,24 @@ fn simd_lanes_match_scalar() {
     report.push((
         "blinn1977 d1",
         common::assert_lanes_match!("blinn1977 d1", ulp = 32, abs = 1e-30, &scalars,
-        fn(c, p) { ndf::blinn1977_d1(c, p) }),
+        fn(c, p) { ndf::reference::blinn1977_d1(c, p) }),
     ));
     report.push((
         "blinn1977 d2",
         common::assert_lanes_match!("blinn1977 d2", ulp = 8, abs = 1e-30, &scalars,
-        fn(t, p) { ndf::blinn1977_d2(t * R::from_f64(1.57), p) }),
+        fn(t, p) { ndf::reference::blinn1977_d2(t * R::from_f64(1.57), p) }),
     ));
     report.push((
         "blinn1977 d3",
         common::assert_lanes_match!("blinn1977 d3", ulp = 0, abs = 0.0, &scalars,
-        fn(c, p) { ndf::blinn1977_d3(c, p.min(R::one())) }),
+        fn(c, p) { ndf::reference::blinn1977_d3(c, p.min(R::one())) }),
     ));
     report.push((
         "blinn1977 constants",
         common::assert_lanes_match!("blinn1977 constants", ulp = 16, abs = 0.0, &scalars,
         fn(c, p) {
             let beta = c.max(R::from_f64(0.01)).min(R::from_f64(1.5));
-            let (c1, c2, c3) = ndf::blinn1977_constants_from_half_angle(beta);
+            let (c1, c2, c3) = ndf::reference::blinn1977_constants_from_half_angle(beta);
             c1 * R::from_f64(1e-3) + c2 + c3
         }),
     ));
