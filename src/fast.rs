@@ -2,7 +2,7 @@
 //!
 //! Every function here is written once, generic over [`Real`], branch-free, and uses only
 //! `+ − × ÷`, `mul_add`, `min`/`max`, [`Real::select`] and the bit primitives
-//! [`Real::exponent_split`], [`Real::ldexp`] and [`Real::rsqrt_estimate`] — no library call.
+//! [`Bits::exponent_split`], [`Bits::ldexp`] and [`Bits::rsqrt_estimate`] — no library call.
 //! So the `f32` instantiation inside a loop over a slice auto-vectorizes (see
 //! `benches/fast.rs`), and the SIMD lanes run the very same arithmetic: a lane and the scalar of
 //! the same precision agree bit for bit except for [`rsqrt`] (the `f32` lanes start from the
@@ -16,8 +16,8 @@
 //!
 //! * **Range reduction** (J.-M. Muller, *Elementary Functions: Algorithms and Implementation*,
 //!   3rd ed., Birkhäuser 2016, ch. 11). `exp2`: `x = n + f` with `n = ⌊x⌋`, `f ∈ [0, 1)`, so
-//!   `2ˣ = 2ⁿ · 2ᶠ` where `2ⁿ` is built in the exponent field ([`Real::ldexp`]). `log2`:
-//!   `x = m · 2ᵉ` ([`Real::exponent_split`]), then `m ∈ [√2/2, √2)` by moving a factor 2
+//!   `2ˣ = 2ⁿ · 2ᶠ` where `2ⁿ` is built in the exponent field ([`Bits::ldexp`]). `log2`:
+//!   `x = m · 2ᵉ` ([`Bits::exponent_split`]), then `m ∈ [√2/2, √2)` by moving a factor 2
 //!   between `m` and `e`, so `log₂ x = e + log₂(1 + u)` with `u = m − 1 ∈ [−0.293, 0.415)`
 //!   (computed exactly, Sterbenz).
 //! * **Polynomials.** `2ᶠ ≈ 1 + f·q(f)` and `log₂(1 + u) ≈ u·q(u)`, with `q` the weighted
@@ -41,7 +41,7 @@
 //!   `|t| = |log₂ result|`; for `f32` the rounding term alone is `≈ 10⁻⁵` at `|t| = 100`
 //!   (results near 10⁻³⁰), a floor no polynomial order removes (`std`'s `powf` avoids it by
 //!   working in double precision internally).
-//! * **`1/√x`**: an estimate ([`Real::rsqrt_estimate`]) refined by Newton–Raphson steps
+//! * **`1/√x`**: an estimate ([`Bits::rsqrt_estimate`]) refined by Newton–Raphson steps
 //!   `y ← y·(3/2 − x·y²/2)`, each of which squares the relative error (`e ← −(3/2)e² − e³/2`).
 //!
 //! # Error bounds
@@ -135,6 +135,8 @@
 //!
 
 use crate::real::Real;
+#[cfg(doc)]
+use crate::real::Bits;
 
 /// Coefficients of `q` in `2ᶠ ≈ 1 + f·q(f)`, `f ∈ [0, 1]`, by polynomial degree `D` of
 /// `1 + f·q(f)` (index `D`, `2 ≤ D ≤ 8`; `q` has degree `D − 1`, coefficients by increasing
@@ -507,7 +509,7 @@ pub fn pow_finish<const E: usize, R: Real>(t: R, y: R) -> R {
     R::select(y.eq(R::zero()), R::one(), exp2::<E, R>(t))
 }
 
-/// `1/√x` from [`Real::rsqrt_estimate`] refined by `N` Newton–Raphson steps, `0 ≤ N ≤ 3`.
+/// `1/√x` from [`Bits::rsqrt_estimate`] refined by `N` Newton–Raphson steps, `0 ≤ N ≤ 3`.
 ///
 /// ```text
 /// y₀ = rsqrt_estimate(x),   y_{k+1} = y_k · (3/2 − (x/2) · y_k²)
@@ -636,7 +638,7 @@ impl PowFn for FastPow {
 ///
 /// * [`ExactSqrt`]: the correctly rounded `√x` and `1/√x` (a square root and a division).
 /// * [`NewtonSqrt`]`<STEPS>`: [`rsqrt`]`::<STEPS>(x)`, the estimate of
-///   [`Real::rsqrt_estimate`] refined by `STEPS` Newton steps, and `√x = x · rsqrt(x)`:
+///   [`Bits::rsqrt_estimate`] refined by `STEPS` Newton steps, and `√x = x · rsqrt(x)`:
 ///   multiplies and adds only, no square root or division (relative error in the module docs;
 ///   both results carry it).
 ///
@@ -682,7 +684,7 @@ impl<const STEPS: usize> SqrtFn for NewtonSqrt<STEPS> {
     }
 }
 
-/// `1/x` for positive `x` from [`Real::rsqrt_estimate`] squared, refined by `N`
+/// `1/x` for positive `x` from [`Bits::rsqrt_estimate`] squared, refined by `N`
 /// Newton–Raphson steps, `0 ≤ N ≤ 3`: multiplies and adds only, no division.
 ///
 /// ```text

@@ -25,6 +25,18 @@
 //!   `tests/models.rs` (0–2 ULP for formulas of `+ − × ÷ √` and `mul_add` only; larger,
 //!   stated bounds where a `pow` with a large exponent amplifies the kernels' difference).
 //!
+//! # Two traits
+//!
+//! * [`Real`] is the vocabulary of formula bodies: arithmetic, `sqrt`, `mul_add`, the
+//!   transcendentals, comparisons to a [`Real::Mask`], [`Real::select`], constants
+//!   (`from_f64`, `zero`, `one`, `pi`) and the lane plumbing (`splat`, `lane`, `from_fn`,
+//!   `any`, `all`). Writing a formula needs nothing else.
+//! * [`Bits`] holds the crate-internal bit tricks that only the polynomial kernels of
+//!   [`crate::fast`] use: [`Bits::exponent_split`], [`Bits::ldexp`] and
+//!   [`Bits::rsqrt_estimate`]. It is a supertrait of [`Real`] (so `fast`'s generic bodies can
+//!   call it on any `R: Real`) and sealed: implemented for the seven lane types above, not
+//!   implementable outside the crate — which seals [`Real`] too.
+//!
 //! [`Splat`] moves a material built on a scalar to any of these types.
 //!
 //! [`wide`]: https://docs.rs/wide
@@ -79,6 +91,7 @@ pub trait Real:
     + SubAssign
     + MulAssign
     + DivAssign
+    + Bits
 {
     /// The element type of one lane: `f32` or `f64`.
     type Scalar: Scalar;
@@ -131,54 +144,6 @@ pub trait Real:
     fn cos(self) -> Self;
     /// Largest integer not greater than `self`.
     fn floor(self) -> Self;
-
-    /// Splits a finite nonzero number into mantissa and exponent: `|self| = m·2ᵉ` with
-    /// `m ∈ [1, 2)` and `e` an integer-valued float, read from the bits (no library call,
-    /// branch-free). The sign is ignored.
-    ///
-    /// ```text
-    /// exponent_split(x) = (m, e),   |x| = m · 2ᵉ,   1 ≤ m < 2,   e = ⌊log₂|x|⌋
-    /// ```
-    ///
-    /// Exact for normal numbers (`e ∈ [−126, 127]` for `f32`, `[−1022, 1023]` for `f64`).
-    /// Outside that domain it returns the raw fields: `0` and subnormals give
-    /// `e = −127` / `−1023` (and `m` built from the subnormal fraction bits), `∞` and NaN give
-    /// `e = 128` / `1024`. The building block of range reduction for logarithms (J.-M. Muller,
-    /// *Elementary Functions: Algorithms and Implementation*, 3rd ed., Birkhäuser 2016, §11).
-    fn exponent_split(self) -> (Self, Self);
-    /// `self · 2ᵉ` for an integer-valued `e`, by building `2ᵉ` in the exponent field (the
-    /// inverse of [`Real::exponent_split`]; no library call, branch-free).
-    ///
-    /// ```text
-    /// ldexp(x, e) = x · 2ᵉ      (one correctly rounded multiplication)
-    /// ```
-    ///
-    /// Domain: `e` integer-valued in `[−127, 128]` (`f32`) or `[−1023, 1024]` (`f64`). Inside
-    /// the normal range `2ᵉ` is exact; the end points encode `2ᵉ` as `0` (so the result is
-    /// `x·0 = 0`: flush to zero) and `+∞` (the result overflows to `±∞`; NaN if `x = 0`).
-    /// Other `e` (non-integer or outside the range) give unspecified finite or infinite values.
-    fn ldexp(self, e: Self) -> Self;
-    /// A cheap estimate `y ≈ 1/√self` for positive normal `self`, to be refined by Newton
-    /// steps (see `brdf::fast::rsqrt`).
-    ///
-    /// * `f32`, `f64`, [`f64x4`]: the bit trick `y = bits⁻¹(R − bits(x)/2)` (the integer
-    ///   view of a float is a scaled, shifted `log₂ x`), with the magic constant
-    ///   `R = 0x5F37_5A80` (`f32`) / `0x5FE6_EB50_0000_0000` (`f64`, the same constant for the
-    ///   wider fields) found by a search minimising the error after one Newton step
-    ///   (`tests/fast.rs` repeats it). Relative error ≤ 3.43·10⁻² (C. Lomont, "Fast inverse
-    ///   square root", tech. report, Purdue 2003, derived 0x5F375A86 the same way).
-    ///   Bit-identical between `f64` and `f64x4` lanes.
-    /// * [`f32x4`], [`f32x8`], [`f32x16`]: `wide`'s `recip_sqrt`, i.e. the hardware estimate
-    ///   `rsqrtps` on x86 with SSE/AVX (relative error ≤ 1.5·2⁻¹² ≈ 3.7·10⁻⁴ by Intel's
-    ///   specification; the exact bits differ between CPU vendors), and the exact `1/√x` where
-    ///   `wide` has no estimate instruction (`f32x16` under AVX-512, NEON, WASM, portable
-    ///   fallback). Either way the error is ≤ 3.7·10⁻⁴, so lanes and the `f32` scalar differ.
-    ///
-    /// `wide`'s `f64x4::recip_sqrt` is an exact division `1/√x` (there is no double-precision
-    /// estimate instruction before AVX-512's `rsqrt14`), which is why [`f64x4`] uses the bit
-    /// trick here. Outside the domain (`0`, subnormals, negatives, `∞`, NaN) the value is
-    /// unspecified.
-    fn rsqrt_estimate(self) -> Self;
 
     /// `self < other`, lane-wise.
     fn lt(self, other: Self) -> Self::Mask;
@@ -247,6 +212,116 @@ pub trait Real:
     }
 }
 
+/// The bit-level building blocks of [`crate::fast`]: reading and writing the exponent field
+/// and the integer-view estimate of `1/√x`.
+///
+/// These are implementation tricks, not formula vocabulary, so they live apart from
+/// [`Real`] (which has them as a supertrait, so `fast`'s generic bodies can call them on any
+/// `R: Real`). The trait is sealed: it is implemented for every lane type of the crate
+/// (`f32`, `f64`, [`F32Fma`], [`f32x4`], [`f32x8`], [`f32x16`], [`f64x4`]) and cannot be
+/// implemented elsewhere, which also seals [`Real`]. Each body reads the IEEE 754 fields of
+/// its precision, named once in the private `binary32` / `binary64` layouts of this module.
+pub trait Bits: Sized + sealed::Sealed {
+    /// Splits a finite nonzero number into mantissa and exponent: `|self| = m·2ᵉ` with
+    /// `m ∈ [1, 2)` and `e` an integer-valued float, read from the bits (no library call,
+    /// branch-free). The sign is ignored.
+    ///
+    /// ```text
+    /// exponent_split(x) = (m, e),   |x| = m · 2ᵉ,   1 ≤ m < 2,   e = ⌊log₂|x|⌋
+    /// ```
+    ///
+    /// Exact for normal numbers (`e ∈ [−126, 127]` for `f32`, `[−1022, 1023]` for `f64`).
+    /// Outside that domain it returns the raw fields: `0` and subnormals give
+    /// `e = −127` / `−1023` (and `m` built from the subnormal fraction bits), `∞` and NaN give
+    /// `e = 128` / `1024`. The building block of range reduction for logarithms (J.-M. Muller,
+    /// *Elementary Functions: Algorithms and Implementation*, 3rd ed., Birkhäuser 2016, §11).
+    fn exponent_split(self) -> (Self, Self);
+    /// `self · 2ᵉ` for an integer-valued `e`, by building `2ᵉ` in the exponent field (the
+    /// inverse of [`Bits::exponent_split`]; no library call, branch-free).
+    ///
+    /// ```text
+    /// ldexp(x, e) = x · 2ᵉ      (one correctly rounded multiplication)
+    /// ```
+    ///
+    /// Domain: `e` integer-valued in `[−127, 128]` (`f32`) or `[−1023, 1024]` (`f64`). Inside
+    /// the normal range `2ᵉ` is exact; the end points encode `2ᵉ` as `0` (so the result is
+    /// `x·0 = 0`: flush to zero) and `+∞` (the result overflows to `±∞`; NaN if `x = 0`).
+    /// Other `e` (non-integer or outside the range) give unspecified finite or infinite values.
+    fn ldexp(self, e: Self) -> Self;
+    /// A cheap estimate `y ≈ 1/√self` for positive normal `self`, to be refined by Newton
+    /// steps (see `brdf::fast::rsqrt`).
+    ///
+    /// * `f32`, `f64`, [`f64x4`]: the bit trick `y = bits⁻¹(R − bits(x)/2)` (the integer
+    ///   view of a float is a scaled, shifted `log₂ x`), with the magic constant
+    ///   `R = 0x5F37_5A80` (`f32`) / `0x5FE6_EB50_0000_0000` (`f64`, the same constant for the
+    ///   wider fields) found by a search minimising the error after one Newton step
+    ///   (`tests/fast.rs` repeats it). Relative error ≤ 3.43·10⁻² (C. Lomont, "Fast inverse
+    ///   square root", tech. report, Purdue 2003, derived 0x5F375A86 the same way).
+    ///   Bit-identical between `f64` and `f64x4` lanes.
+    /// * [`f32x4`], [`f32x8`], [`f32x16`]: `wide`'s `recip_sqrt`, i.e. the hardware estimate
+    ///   `rsqrtps` on x86 with SSE/AVX (relative error ≤ 1.5·2⁻¹² ≈ 3.7·10⁻⁴ by Intel's
+    ///   specification; the exact bits differ between CPU vendors), and the exact `1/√x` where
+    ///   `wide` has no estimate instruction (`f32x16` under AVX-512, NEON, WASM, portable
+    ///   fallback). Either way the error is ≤ 3.7·10⁻⁴, so lanes and the `f32` scalar differ.
+    ///
+    /// `wide`'s `f64x4::recip_sqrt` is an exact division `1/√x` (there is no double-precision
+    /// estimate instruction before AVX-512's `rsqrt14`), which is why [`f64x4`] uses the bit
+    /// trick here. Outside the domain (`0`, subnormals, negatives, `∞`, NaN) the value is
+    /// unspecified.
+    fn rsqrt_estimate(self) -> Self;
+}
+
+mod sealed {
+    /// The lane types of the crate: [`super::Bits`] (hence [`super::Real`]) is implemented
+    /// for these only.
+    pub trait Sealed {}
+    impl Sealed for f32 {}
+    impl Sealed for f64 {}
+    impl Sealed for super::F32Fma {}
+    impl Sealed for super::f32x4 {}
+    impl Sealed for super::f32x8 {}
+    impl Sealed for super::f32x16 {}
+    impl Sealed for super::f64x4 {}
+}
+
+/// The IEEE 754 binary32 fields the [`Bits`] of `f32` and its lanes read and write.
+mod binary32 {
+    /// Stored fraction bits (the exponent field starts above them).
+    pub(super) const MANTISSA_BITS: u32 = 23;
+    /// The exponent field, shifted down.
+    pub(super) const EXPONENT_MASK: u32 = 0xFF;
+    /// The fraction field.
+    pub(super) const FRACTION_MASK: u32 = 0x007F_FFFF;
+    /// The bits of `1.0`: OR-ed onto a fraction, they give a mantissa in `[1, 2)`.
+    pub(super) const ONE_BITS: u32 = 0x3F80_0000;
+    /// The bits of `2²³`: OR-ed onto a small integer `n`, they give the float `2²³ + n`.
+    pub(super) const TWO_POW_MANTISSA_BITS: u32 = 0x4B00_0000;
+    /// `2²³ + 127` (the exponent bias): `(2²³ + biased) − this` is the unbiased exponent,
+    /// and `e + this` puts the biased exponent of `e` in the low fraction bits.
+    pub(super) const EXPONENT_OFFSET: f32 = 8_388_735.0;
+    /// The magic constant of the `1/√x` estimate (see [`super::Bits::rsqrt_estimate`]).
+    pub(super) const RSQRT_MAGIC: u32 = 0x5F37_5A80;
+}
+
+/// The IEEE 754 binary64 fields the [`Bits`] of `f64` and its lanes read and write (as in
+/// `binary32`).
+mod binary64 {
+    /// Stored fraction bits (the exponent field starts above them).
+    pub(super) const MANTISSA_BITS: u32 = 52;
+    /// The exponent field, shifted down.
+    pub(super) const EXPONENT_MASK: u64 = 0x7FF;
+    /// The fraction field.
+    pub(super) const FRACTION_MASK: u64 = 0x000F_FFFF_FFFF_FFFF;
+    /// The bits of `1.0`.
+    pub(super) const ONE_BITS: u64 = 0x3FF0_0000_0000_0000;
+    /// The bits of `2⁵²`.
+    pub(super) const TWO_POW_MANTISSA_BITS: u64 = 0x4330_0000_0000_0000;
+    /// `2⁵² + 1023` (the exponent bias).
+    pub(super) const EXPONENT_OFFSET: f64 = 4_503_599_627_371_519.0;
+    /// The magic constant of the `1/√x` estimate (see [`super::Bits::rsqrt_estimate`]).
+    pub(super) const RSQRT_MAGIC: u64 = 0x5FE6_EB50_0000_0000;
+}
+
 /// `[f(0), f(1), …, f(N−1)]` for per-channel values in hot paths.
 ///
 /// Same result as `core::array::from_fn`, written as a plain loop so that it is always
@@ -287,8 +362,10 @@ macro_rules! bool_mask {
     };
 }
 
+/// `Real`, `Bits` and `Scalar` of a primitive float: `impl_scalar!(f32 { math: f32m, layout:
+/// binary32 })`, with `math` the private std/libm dispatch and `layout` the IEEE 754 fields.
 macro_rules! impl_scalar {
-    ($t:ty, $m:ident, $mb:expr, $emask:expr, $fmask:expr, $onebits:expr, $one_b:expr, $eoff:expr, $rsqrt_magic:expr) => {
+    ($t:ty { math: $m:ident, layout: $l:ident $(,)? }) => {
         impl Real for $t {
             type Scalar = $t;
             type Mask = bool;
@@ -371,21 +448,6 @@ macro_rules! impl_scalar {
                 $m::floor(self)
             }
             #[inline(always)]
-            fn exponent_split(self) -> (Self, Self) {
-                let b = self.to_bits();
-                let e = <$t>::from_bits($one_b | ((b >> $mb) & $emask)) - $eoff;
-                let m = <$t>::from_bits((b & $fmask) | $onebits);
-                (m, e)
-            }
-            #[inline(always)]
-            fn ldexp(self, e: Self) -> Self {
-                self * <$t>::from_bits((e + $eoff).to_bits() << $mb)
-            }
-            #[inline(always)]
-            fn rsqrt_estimate(self) -> Self {
-                <$t>::from_bits($rsqrt_magic - (self.to_bits() >> 1))
-            }
-            #[inline(always)]
             fn lt(self, other: Self) -> bool {
                 self < other
             }
@@ -412,6 +474,25 @@ macro_rules! impl_scalar {
             bool_mask!();
         }
 
+        impl Bits for $t {
+            #[inline(always)]
+            fn exponent_split(self) -> (Self, Self) {
+                let b = self.to_bits();
+                let biased = (b >> $l::MANTISSA_BITS) & $l::EXPONENT_MASK;
+                let e = <$t>::from_bits($l::TWO_POW_MANTISSA_BITS | biased) - $l::EXPONENT_OFFSET;
+                let m = <$t>::from_bits((b & $l::FRACTION_MASK) | $l::ONE_BITS);
+                (m, e)
+            }
+            #[inline(always)]
+            fn ldexp(self, e: Self) -> Self {
+                self * <$t>::from_bits((e + $l::EXPONENT_OFFSET).to_bits() << $l::MANTISSA_BITS)
+            }
+            #[inline(always)]
+            fn rsqrt_estimate(self) -> Self {
+                <$t>::from_bits($l::RSQRT_MAGIC - (self.to_bits() >> 1))
+            }
+        }
+
         impl Scalar for $t {
             const EPSILON: Self = <$t>::EPSILON;
             #[inline(always)]
@@ -422,34 +503,27 @@ macro_rules! impl_scalar {
     };
 }
 
-// 8_388_735 = 2²³ + 127 and 4_503_599_627_371_519 = 2⁵² + 1023: adding them to an
-// integer-valued exponent puts the biased exponent in the low fraction bits.
-impl_scalar!(
-    f32,
-    f32m,
-    23,
-    0xFF,
-    0x007F_FFFF,
-    0x3F80_0000,
-    0x4B00_0000,
-    8_388_735.0_f32,
-    0x5F37_5A80_u32
-);
-impl_scalar!(
-    f64,
-    f64m,
-    52,
-    0x7FF,
-    0x000F_FFFF_FFFF_FFFF,
-    0x3FF0_0000_0000_0000,
-    0x4330_0000_0000_0000,
-    4_503_599_627_371_519.0_f64,
-    0x5FE6_EB50_0000_0000_u64
-);
+impl_scalar!(f32 {
+    math: f32m,
+    layout: binary32,
+});
+impl_scalar!(f64 {
+    math: f64m,
+    layout: binary64,
+});
 
+/// `Real` and `Bits` of a `wide` lane type: `impl_lanes!(f32x8 { scalar: f32, lanes: 8, bits:
+/// u32x8, layout: binary32, rsqrt_estimate: |x| … })`, with `bits` the unsigned lane type of the
+/// same width (for the bit casts), `layout` the IEEE 754 fields of `scalar`, and
+/// `rsqrt_estimate` the body of [`Bits::rsqrt_estimate`].
 macro_rules! impl_lanes {
-    ($v:ty, $t:ty, $n:expr, $pow:ident, $u:ty, $mb:expr, $emask:expr, $fmask:expr, $onebits:expr,
-     $one_b:expr, $eoff:expr, $rsqrt:expr) => {
+    ($v:ty {
+        scalar: $t:ty,
+        lanes: $n:expr,
+        bits: $u:ty,
+        layout: $l:ident,
+        rsqrt_estimate: $rsqrt:expr $(,)?
+    }) => {
         impl Real for $v {
             type Scalar = $t;
             type Mask = $v;
@@ -509,7 +583,7 @@ macro_rules! impl_lanes {
             }
             #[inline(always)]
             fn pow(self, y: Self) -> Self {
-                <$v>::$pow(self, y)
+                <$v>::powf_simd(self, y)
             }
             #[inline(always)]
             fn sin(self) -> Self {
@@ -522,24 +596,6 @@ macro_rules! impl_lanes {
             #[inline(always)]
             fn floor(self) -> Self {
                 <$v>::floor(self)
-            }
-            #[inline(always)]
-            fn exponent_split(self) -> (Self, Self) {
-                let b: $u = cast(self);
-                let biased = b.unbounded_shr_scalar($mb) & <$u>::splat($emask);
-                let e = cast::<$u, $v>(biased | <$u>::splat($one_b)) - <$v>::splat($eoff);
-                let m = cast::<$u, $v>((b & <$u>::splat($fmask)) | <$u>::splat($onebits));
-                (m, e)
-            }
-            #[inline(always)]
-            fn ldexp(self, e: Self) -> Self {
-                let b: $u = cast(e + <$v>::splat($eoff));
-                self * cast::<$u, $v>(b.unbounded_shl_scalar($mb))
-            }
-            #[inline(always)]
-            fn rsqrt_estimate(self) -> Self {
-                let f: fn($v) -> $v = $rsqrt;
-                f(self)
             }
             #[inline(always)]
             fn lt(self, other: Self) -> Self {
@@ -578,47 +634,64 @@ macro_rules! impl_lanes {
                 mask.all()
             }
         }
+
+        impl Bits for $v {
+            #[inline(always)]
+            fn exponent_split(self) -> (Self, Self) {
+                let b: $u = cast(self);
+                let biased = b.unbounded_shr_scalar($l::MANTISSA_BITS) & <$u>::splat($l::EXPONENT_MASK);
+                let two_pow_plus_biased = cast::<$u, $v>(biased | <$u>::splat($l::TWO_POW_MANTISSA_BITS));
+                let e = two_pow_plus_biased - <$v>::splat($l::EXPONENT_OFFSET);
+                let fraction = b & <$u>::splat($l::FRACTION_MASK);
+                let m = cast::<$u, $v>(fraction | <$u>::splat($l::ONE_BITS));
+                (m, e)
+            }
+            #[inline(always)]
+            fn ldexp(self, e: Self) -> Self {
+                let b: $u = cast(e + <$v>::splat($l::EXPONENT_OFFSET));
+                self * cast::<$u, $v>(b.unbounded_shl_scalar($l::MANTISSA_BITS))
+            }
+            #[inline(always)]
+            fn rsqrt_estimate(self) -> Self {
+                let f: fn($v) -> $v = $rsqrt;
+                f(self)
+            }
+        }
     };
 }
 
-macro_rules! impl_f32_lanes {
-    ($v:ty, $u:ty, $n:expr) => {
-        impl_lanes!(
-            $v,
-            f32,
-            $n,
-            powf_simd,
-            $u,
-            23,
-            0xFF,
-            0x007F_FFFF,
-            0x3F80_0000,
-            0x4B00_0000,
-            8_388_735.0,
-            |x| x.recip_sqrt()
-        );
-    };
-}
-impl_f32_lanes!(f32x4, u32x4, 4);
-impl_f32_lanes!(f32x8, u32x8, 8);
-impl_f32_lanes!(f32x16, u32x16, 16);
-impl_lanes!(
-    f64x4,
-    f64,
-    4,
-    powf_simd,
-    u64x4,
-    52,
-    0x7FF,
-    0x000F_FFFF_FFFF_FFFF,
-    0x3FF0_0000_0000_0000,
-    0x4330_0000_0000_0000,
-    4_503_599_627_371_519.0,
-    |x| {
+impl_lanes!(f32x4 {
+    scalar: f32,
+    lanes: 4,
+    bits: u32x4,
+    layout: binary32,
+    rsqrt_estimate: |x| x.recip_sqrt(),
+});
+impl_lanes!(f32x8 {
+    scalar: f32,
+    lanes: 8,
+    bits: u32x8,
+    layout: binary32,
+    rsqrt_estimate: |x| x.recip_sqrt(),
+});
+impl_lanes!(f32x16 {
+    scalar: f32,
+    lanes: 16,
+    bits: u32x16,
+    layout: binary32,
+    rsqrt_estimate: |x| x.recip_sqrt(),
+});
+impl_lanes!(f64x4 {
+    scalar: f64,
+    lanes: 4,
+    bits: u64x4,
+    layout: binary64,
+    // The f64 bit trick, lane-wise (wide's f64x4::recip_sqrt is an exact division).
+    rsqrt_estimate: |x| {
         let b: u64x4 = cast(x);
-        cast(u64x4::splat(0x5FE6_EB50_0000_0000) - b.unbounded_shr_scalar(1))
-    }
-);
+        cast(u64x4::splat(binary64::RSQRT_MAGIC) - b.unbounded_shr_scalar(1))
+    },
+});
 
 // ---------------------------------------------------------------------------------------------
 // F32Fma: f32 with a multiply-add that always fuses
@@ -746,8 +819,7 @@ impl Real for F32Fma {
         log2,
         sin,
         cos,
-        floor,
-        rsqrt_estimate
+        floor
     );
     #[inline(always)]
     fn min(self, other: Self) -> Self {
@@ -766,21 +838,28 @@ impl Real for F32Fma {
     fn pow(self, y: Self) -> Self {
         F32Fma(<f32 as Real>::pow(self.0, y.0))
     }
-    #[inline(always)]
-    fn exponent_split(self) -> (Self, Self) {
-        let (m, e) = <f32 as Real>::exponent_split(self.0);
-        (F32Fma(m), F32Fma(e))
-    }
-    #[inline(always)]
-    fn ldexp(self, e: Self) -> Self {
-        F32Fma(<f32 as Real>::ldexp(self.0, e.0))
-    }
     cmp_via_f32!(lt, le, gt, ge, eq);
     #[inline(always)]
     fn is_finite(self) -> bool {
         self.0.is_finite()
     }
     bool_mask!();
+}
+
+impl Bits for F32Fma {
+    #[inline(always)]
+    fn exponent_split(self) -> (Self, Self) {
+        let (m, e) = <f32 as Bits>::exponent_split(self.0);
+        (F32Fma(m), F32Fma(e))
+    }
+    #[inline(always)]
+    fn ldexp(self, e: Self) -> Self {
+        F32Fma(<f32 as Bits>::ldexp(self.0, e.0))
+    }
+    #[inline(always)]
+    fn rsqrt_estimate(self) -> Self {
+        F32Fma(<f32 as Bits>::rsqrt_estimate(self.0))
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
