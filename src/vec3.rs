@@ -61,14 +61,6 @@ impl<R: Real> Vec3<R> {
         Self::new(self.x * s, self.y * s, self.z * s)
     }
 
-    /// Component-wise sum (also available as `+`).
-    #[allow(clippy::should_implement_trait)]
-    #[inline(always)]
-    #[must_use]
-    pub fn add(self, o: Self) -> Self {
-        Self::new(self.x + o.x, self.y + o.y, self.z + o.z)
-    }
-
     /// Unit vector along `self`; lanes of zero length give the zero vector (never NaN).
     #[inline(always)]
     #[must_use]
@@ -94,8 +86,7 @@ impl<R: Real> Vec3<R> {
     #[inline(always)]
     #[must_use]
     pub fn reflect(self, n: Self) -> Self {
-        n.scale(R::from_f64(2.0) * self.dot(n))
-            .add(self.scale(-R::one()))
+        n.scale(R::from_f64(2.0) * self.dot(n)) + self.scale(-R::one())
     }
 }
 
@@ -112,11 +103,12 @@ impl<S: Scalar> Splat for Vec3<S> {
     }
 }
 
+/// Component-wise sum, `a + b` (the one spelling of vector addition).
 impl<R: Real> core::ops::Add for Vec3<R> {
     type Output = Self;
     #[inline(always)]
     fn add(self, o: Self) -> Self {
-        Vec3::add(self, o)
+        Self::new(self.x + o.x, self.y + o.y, self.z + o.z)
     }
 }
 
@@ -171,7 +163,7 @@ pub fn tan2_theta<R: Real>(w: Vec3<R>) -> R {
 #[inline(always)]
 #[must_use]
 pub fn half_vector<R: Real>(wi: Vec3<R>, wo: Vec3<R>) -> Vec3<R> {
-    wi.add(wo).normalize_or_zero()
+    (wi + wo).normalize_or_zero()
 }
 
 /// `[x, y, z]` → `Vec3 { x, y, z }`.

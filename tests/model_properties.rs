@@ -52,7 +52,7 @@ fn sphere(axis: V, breaks: &[f64], g: &dyn Fn(V) -> f64) -> f64 {
             st * common::integrate(
                 |ph| {
                     let (sp, cp) = ph.sin_cos();
-                    g(t.scale(st * cp).add(b.scale(st * sp)).add(axis.scale(ct)))
+                    g(t.scale(st * cp) + b.scale(st * sp) + axis.scale(ct))
                 },
                 0.0,
                 2.0 * PI,
@@ -146,7 +146,7 @@ fn albedo_half_x(f: &dyn Fn(V, V) -> f64, fixed: V, swap: bool, panels: usize, a
     tb.dedup_by(|a, b| (*a - *b).abs() < 1e-13);
     let g = |wm: V| {
         let c = fixed.dot(wm);
-        let w = wm.scale(2.0 * c).add(fixed.scale(-1.0));
+        let w = wm.scale(2.0 * c) + fixed.scale(-1.0);
         if c <= 0.0 || w.z <= 0.0 {
             return 0.0;
         }

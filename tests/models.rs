@@ -25,7 +25,7 @@ fn rel(a: f64, b: f64) -> f64 {
 }
 
 fn half(wi: V, wo: V) -> V {
-    wi.add(wo).normalize_or_zero()
+    (wi + wo).normalize_or_zero()
 }
 
 /// Directions with both cosines ≥ 1e-3 (the trigonometric references lose accuracy at

@@ -354,7 +354,7 @@ where
                     let sin_phi = sin_phi_o * c_d + cos_phi_o * s_d;
                     let wm = Vec3::new(s_m * cos_phi, s_m * sin_phi, c_m);
                     let o_m = wo.dot(wm);
-                    let wi = wm.scale(2.0 * o_m).add(wo.scale(-1.0));
+                    let wi = wm.scale(2.0 * o_m) - wo;
                     if !(wi.z > 0.0 && o_m > 0.0) {
                         return Quad {
                             value: [0.0; N],
@@ -526,7 +526,7 @@ fn model_kinks(k: Kinks, wo: Vec3<f64>, cos_phi_o: f64, sin_phi_o: f64) -> Model
     for &p in k.points() {
         // On the horizon to rounding (a fibre tangent in the surface) counts as inside.
         if p.z >= -1e-12 {
-            let h = rot(p).add(rot(wo));
+            let h = rot(p) + rot(wo);
             let len = h.length();
             if len > 0.0 {
                 let h = h.scale(1.0 / len);
@@ -626,7 +626,7 @@ impl ModelKinks {
         let sin_o = f64m::sqrt(wo.x * wo.x + wo.y * wo.y);
         let wo = Vec3::new(sin_o, 0.0, wo.z);
         let theta_m = |wi: Vec3<f64>| {
-            let h = wi.add(wo);
+            let h = wi + wo;
             super::angle(f64m::sqrt(h.x * h.x + h.y * h.y), h.z)
         };
         for &(d, level) in &self.planes[..self.n_planes] {
@@ -643,11 +643,11 @@ impl ModelKinks {
             let e2 = cross(d, e1);
             let wi = |b: f64| {
                 let (sb, cb) = (f64m::sin(b), f64m::cos(b));
-                d.scale(level).add(e1.scale(r * cb)).add(e2.scale(r * sb))
+                d.scale(level) + e1.scale(r * cb) + e2.scale(r * sb)
             };
             let dwi = |b: f64| {
                 let (sb, cb) = (f64m::sin(b), f64m::cos(b));
-                e1.scale(-r * sb).add(e2.scale(r * cb))
+                e1.scale(-r * sb) + e2.scale(r * cb)
             };
             // Horizon: level d.z + r (e₁.z cos β + e₂.z sin β) = 0.
             let (ha, hb, hc) = (r * e1.z, r * e2.z, level * d.z);
@@ -882,13 +882,13 @@ mod tests {
         let sin_phi = sign * (1.0 - cos_phi * cos_phi).max(0.0).sqrt();
         let (s, c) = theta_m.sin_cos();
         let wm = Vec3::new(s * cos_phi, s * sin_phi, c);
-        (wm.scale(2.0 * wo.dot(wm)).add(wo.scale(-1.0)), wo)
+        (wm.scale(2.0 * wo.dot(wm)) - wo, wo)
     }
 
     /// The kink functions, written directly on `(wi, wo)` (V-cavity `G1(v) = 2 (n·m)(n·v)/(v·m)`
     /// with `m` the half vector).
     fn kinks(wi: Vec3<f64>, wo: Vec3<f64>) -> [f64; KINK_CURVES] {
-        let m = wi.add(wo).scale(1.0 / wi.add(wo).length());
+        let m = (wi + wo).scale(1.0 / (wi + wo).length());
         let g1 = |v: Vec3<f64>| 2.0 * m.z * v.z / v.dot(m);
         let r = Vec3::new(-wo.x, -wo.y, wo.z);
         let rw = r.dot(wi);

@@ -313,7 +313,7 @@ pub(crate) fn half_and_cos_d<S: crate::fast::SqrtFn, R: Real>(
     wi: Vec3<R>,
     wo: Vec3<R>,
 ) -> (Vec3<R>, R) {
-    let h = wi.add(wo);
+    let h = wi + wo;
     let len2 = h.length_squared();
     let ok = len2.gt(R::zero());
     let (len, inv) = S::sqrt_rsqrt(len2);

@@ -183,7 +183,7 @@ impl<R: Real, const N: usize, K: WardNormalization> Brdf<R, N> for Ward<R, N, K>
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
-        let h = wi.add(wo);
+        let h = wi + wo;
         let hz2 = (h.z * h.z).max(R::from_f64(DENOM_FLOOR));
         let e = (h.x * h.x).mul_add(self.inv_ax2, h.y * h.y * self.inv_ay2) / hz2;
         let lobe = (-e).exp() * K::prefactor_times_pi_ax_ay(h, wi.z, wo.z);

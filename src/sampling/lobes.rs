@@ -79,9 +79,7 @@ pub(crate) fn sample_cos_power<R: Real>(axis: Vec3<R>, e: R, u0: R, u1: R) -> Ve
     let (cos, sin) = cos_power_angle(e, u0);
     let phi = R::from_f64(2.0 * core::f64::consts::PI) * u1;
     let (t, b) = basis(axis);
-    t.scale(sin * phi.cos())
-        .add(b.scale(sin * phi.sin()))
-        .add(axis.scale(cos))
+    t.scale(sin * phi.cos()) + b.scale(sin * phi.sin()) + axis.scale(cos)
 }
 
 /// A half-vector distribution: draws the microfacet normal `wm` (upper hemisphere) and gives
@@ -202,7 +200,7 @@ impl<R: Real> HalfLobe<R> for WardHalf<R> {
 #[inline(always)]
 pub(crate) fn reflect<R: Real>(wo: Vec3<R>, wm: Vec3<R>) -> (Vec3<R>, R::Mask) {
     let d = wo.dot(wm);
-    (wm.scale(d + d).add(wo.scale(-R::one())), d.gt(R::zero()))
+    (wm.scale(d + d) + wo.scale(-R::one()), d.gt(R::zero()))
 }
 
 /// The density of `wi` when `wm` is drawn from `lobe` and `wo` reflected about it:
