@@ -124,7 +124,7 @@ pub(crate) fn check<T: Into<f64> + Copy>(
 }
 
 /// [`check`] without the `f32` fit: for parameters of `f64`-only computations (the fit
-/// analysis of [`crate::normalization::fit_error`]).
+/// analysis of [`crate::normalization::fit::fit_error`]).
 #[inline]
 pub(crate) fn check_f64<T: Into<f64> + Copy>(
     param: &'static str,

@@ -79,7 +79,7 @@
 //! Gulbrandsen's mapping is a re-parametrization of the exact equations: its error against
 //! the exact Fresnel is rounding only (measured ≤ 3·10⁻¹⁵ for every preset), as long as the
 //! material's edge tint `g` lies in `[0, 1]`; it does for all seven presets (`g` from 0.54
-//! for iron to 1.000 for silver, see [`gulbrandsen_from_nk`]).
+//! for iron to 1.000 for silver, see [`reference::gulbrandsen_from_nk`]).
 //!
 //! # References
 //!
@@ -617,53 +617,6 @@ fn cdiv<R: Real>((a, b): (R, R), (c, d): (R, R)) -> (R, R) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Cook-Torrance (g, c)
-// ---------------------------------------------------------------------------------------
-
-/// Cook & Torrance's closed form of the unpolarized dielectric Fresnel reflectance, as the
-/// seed talk quotes it for Blinn's model, with its two OCR/slide errors corrected:
-///
-/// ```text
-/// c = cos θ,   g² = η² + c² − 1     (seed: "g = √(n² + c²) − 1": the −1 belongs under the root)
-/// F = ½ (g − c)²/(g + c)² · (1 + (c(g + c) − 1)² / (c(g − c) + 1)²)      (seed omits the ½)
-/// F = 1 when g² < 0 (total internal reflection)
-/// ```
-///
-/// It is algebraically the same as [`dielectric`]: `(g − c)/(g + c) = −r_s` and the second
-/// factor is `1 + r_p²/r_s²` (tests check the equality over the whole domain). Without the
-/// `½` the value at normal incidence would be `2 F0`.
-///
-/// * Domain: `eta ∈ [MIN_ETA, MAX_ETA]`, `cos_theta` by magnitude, clamped to 1 (no `1/η`
-///   flip: pass the relative IOR seen from the incident side). Result in `[0, 1]`;
-///   index-matched (`η = 1`) gives `0` at every angle. `g` is formed as in [`dielectric`].
-///
-/// Reference: R. L. Cook, K. E. Torrance, "A Reflectance Model for Computer Graphics",
-/// ACM Trans. Graph. 1(1), 1982, eq. in §3 (after Sparrow & Cess); J. F. Blinn, "Models of Light
-/// Reflection for Computer Synthesized Pictures", SIGGRAPH 1977.
-///
-/// # Examples
-///
-/// ```
-/// use brdf::fresnel::{cook_torrance_gc, dielectric};
-/// let (c, eta) = (0.3_f64, 1.5);
-/// assert!((cook_torrance_gc(c, eta) - dielectric(c, eta)).abs() < 1e-15);
-/// ```
-#[inline]
-#[must_use]
-pub fn cook_torrance_gc<R: Real>(cos_theta: R, eta: R) -> R {
-    let c = cos_theta.abs().min(R::one());
-    // g = η cos θt, cos θt formed as in `dielectric` (g = c at η = 1).
-    let (t, tir) = DielectricConsts::of(eta, eta.recip()).cos_t(c, c * c);
-    let g = eta * t;
-    let gpc = g + c;
-    let gmc = g - c;
-    let a = R::select(gpc.gt(R::zero()), gmc / gpc, R::zero());
-    let b = c.mul_add(gpc, -R::one()) / c.mul_add(gmc, R::one());
-    let f = (a * a * b.mul_add(b, R::one()) * R::from_f64(0.5)).min(R::one());
-    R::select(tir, R::one(), f)
-}
-
-// ---------------------------------------------------------------------------------------
 // Schlick and F0 conversions
 // ---------------------------------------------------------------------------------------
 
@@ -883,75 +836,6 @@ pub fn f82_tint_with_b<R: Real>(f0: R, b: R, cos_theta: R) -> R {
 #[must_use]
 pub fn f82_tint<R: Real>(f0: R, tint: R, cos_theta: R) -> R {
     f82_tint_with_b(f0, f82_b(f0, tint), cos_theta)
-}
-
-/// Gulbrandsen's artist-friendly parameters → complex IOR: from reflectivity `r` (the
-/// normal-incidence reflectance) and edge tint `g`, the `(n, k)` with `F0 = r`.
-///
-/// ```text
-/// n_min = (1 − r)/(1 + r),   n_max = (1 + √r)/(1 − √r)
-/// n = g·n_min + (1 − g)·n_max
-/// k = √( (r (n + 1)² − (n − 1)²) / (1 − r) )
-/// ```
-///
-/// `k` solves `F0(n, k) = r` for `k` (see [`f0_from_complex_ior`]); real `k` needs
-/// `n ∈ [(1−√r)/(1+√r), n_max]`, which `n ∈ [n_min, n_max]` satisfies. `g = 0` gives the
-/// dielectric `n = n_max, k = 0`; `g = 1` the smallest `n` (`n_min`). Along the family `k`
-/// is not monotonic: it peaks at `n = (1 + r)/(1 − r)`, inside `[n_min, n_max]`. The result is exact Fresnel: [`conductor`]`(1, n, k) = r`.
-///
-/// * Domain `r ∈ [0, 1)`, `g ∈ [0, 1]`. As `r → 1`, `n_max` and `k` grow like `1/(1 − √r)`;
-///   shader implementations clamp `r ≤ 0.99`.
-///
-/// Reference: O. Gulbrandsen, "Artist Friendly Metallic Fresnel", JCGT 3(4), 2014, §3.
-///
-/// # Examples
-///
-/// ```
-/// use brdf::fresnel::{f0_from_complex_ior, gulbrandsen_from_nk, gulbrandsen_to_nk};
-/// let (n, k) = gulbrandsen_to_nk(0.9_f64, 0.5);
-/// assert!((f0_from_complex_ior(n, k) - 0.9).abs() < 1e-12);
-/// let (r, g) = gulbrandsen_from_nk(n, k);
-/// assert!((r - 0.9).abs() < 1e-12 && (g - 0.5).abs() < 1e-12);
-/// ```
-#[inline]
-#[must_use]
-pub fn gulbrandsen_to_nk<R: Real>(r: R, g: R) -> (R, R) {
-    let (n_min, n_max) = gulbrandsen_n_range(r);
-    // (1 − g)·n_max + g·n_min: exact at both ends (n_max ≫ n_min as r → 1).
-    let n = g.mul_add(n_min, (R::one() - g) * n_max);
-    let np = n + R::one();
-    let nm = n - R::one();
-    let k2 = (r * np).mul_add(np, -(nm * nm)) / (R::one() - r);
-    (n, k2.safe_sqrt())
-}
-
-/// Complex IOR → Gulbrandsen's artist-friendly `(r, g)`: reflectivity and edge tint.
-///
-/// ```text
-/// r = ((n − 1)² + k²) / ((n + 1)² + k²)
-/// g = (n_max(r) − n) / (n_max(r) − n_min(r))
-/// ```
-///
-/// The exact inverse of [`gulbrandsen_to_nk`]. A measured metal may give `g` outside
-/// `[0, 1]` (its `n` below `n_min(r)`); the mapping still round-trips, but artist UIs that
-/// clamp `g` to `[0, 1]` then change the material. Domain `n ∈ (0, ∞)`, `k ∈ [0, ∞)` with
-/// `r < 1` and `n_max ≠ n_min` (i.e. `r > 0`); `r = 0` (`n = 1, k = 0`) returns `g = 0`.
-///
-/// Reference: Gulbrandsen 2014, §3.
-#[inline]
-#[must_use]
-pub fn gulbrandsen_from_nk<R: Real>(n: R, k: R) -> (R, R) {
-    let r = f0_from_complex_ior(n, k);
-    let (n_min, n_max) = gulbrandsen_n_range(r);
-    let span = n_max - n_min;
-    let g = R::select(span.gt(R::zero()), (n_max - n) / span, R::zero());
-    (r, g)
-}
-
-#[inline]
-fn gulbrandsen_n_range<R: Real>(r: R) -> (R, R) {
-    // n_max is the dielectric with F0 = r.
-    ((R::one() - r) / (R::one() + r), ior_from_f0(r))
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1249,8 +1133,8 @@ impl<S: Scalar, const N: usize> Conductor<S, N> {
 
     /// A conductor from Gulbrandsen's artist-friendly reflectivity
     /// `r ∈ [0, MAX_DIELECTRIC_F0]` and edge tint `g ∈ [0, 1]` per channel (see
-    /// [`gulbrandsen_to_nk`]), else [`Error`]. The bound on `r` keeps the IOR in the domain
-    /// (`n ≤ n_max(r) ≤ MAX_ETA`, `k ≤ n_max/2`): as `r → 1`, `n_max` grows like
+    /// [`reference::gulbrandsen_to_nk`]), else [`Error`]. The bound on `r` keeps the IOR in
+    /// the domain (`n ≤ n_max(r) ≤ MAX_ETA`, `k ≤ n_max/2`): as `r → 1`, `n_max` grows like
     /// `4/(1 − r)`.
     pub fn from_reflectivity_edge_tint(r: [S; N], g: [S; N]) -> Result<Self, Error> {
         let mut eta = r;
@@ -1258,7 +1142,7 @@ impl<S: Scalar, const N: usize> Conductor<S, N> {
         for i in 0..N {
             error::in_range("r", r[i], 0.0, MAX_DIELECTRIC_F0, F0_IOR_DOMAIN)?;
             error::unit_interval("g", g[i])?;
-            let (n, kk) = gulbrandsen_to_nk::<f64>(r[i].into(), g[i].into());
+            let (n, kk) = reference::gulbrandsen_to_nk::<f64>(r[i].into(), g[i].into());
             (eta[i], k[i]) = (S::of(n), S::of(kk));
         }
         Self::new(eta, k)
@@ -1615,5 +1499,136 @@ impl<S: Scalar> Dielectric<S> {
             });
         }
         Self::new(S::of(eta[1]))
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Reference-only formulas
+// ---------------------------------------------------------------------------------------
+
+/// Formulas from the literature kept for comparison and conversion rather than as Fresnel
+/// terms: Cook & Torrance's `(g, c)` form of the dielectric reflectance (algebraically
+/// [`dielectric`](crate::fresnel::dielectric), tested equal) and Gulbrandsen's
+/// artist-friendly reflectivity/edge-tint mapping to a complex IOR (the model-facing entry
+/// point is [`Conductor::from_reflectivity_edge_tint`](crate::fresnel::Conductor::from_reflectivity_edge_tint)).
+///
+/// References: R. L. Cook, K. E. Torrance, ACM Trans. Graph. 1(1), 1982; O. Gulbrandsen,
+/// "Artist Friendly Metallic Fresnel", JCGT 3(4), 2014.
+pub mod reference {
+    use super::{DielectricConsts, ior_from_f0};
+    use crate::Real;
+    use crate::fresnel::f0_from_complex_ior;
+
+    /// Cook & Torrance's closed form of the unpolarized dielectric Fresnel reflectance, as the
+    /// seed talk quotes it for Blinn's model, with its two OCR/slide errors corrected:
+    ///
+    /// ```text
+    /// c = cos θ,   g² = η² + c² − 1     (seed: "g = √(n² + c²) − 1": the −1 belongs under the root)
+    /// F = ½ (g − c)²/(g + c)² · (1 + (c(g + c) − 1)² / (c(g − c) + 1)²)      (seed omits the ½)
+    /// F = 1 when g² < 0 (total internal reflection)
+    /// ```
+    ///
+    /// It is algebraically the same as [`dielectric`](super::dielectric): `(g − c)/(g + c) = −r_s` and the second
+    /// factor is `1 + r_p²/r_s²` (tests check the equality over the whole domain). Without the
+    /// `½` the value at normal incidence would be `2 F0`.
+    ///
+    /// * Domain: `eta ∈ [MIN_ETA, MAX_ETA]`, `cos_theta` by magnitude, clamped to 1 (no `1/η`
+    ///   flip: pass the relative IOR seen from the incident side). Result in `[0, 1]`;
+    ///   index-matched (`η = 1`) gives `0` at every angle. `g` is formed as in [`dielectric`](super::dielectric).
+    ///
+    /// Reference: R. L. Cook, K. E. Torrance, "A Reflectance Model for Computer Graphics",
+    /// ACM Trans. Graph. 1(1), 1982, eq. in §3 (after Sparrow & Cess); J. F. Blinn, "Models of Light
+    /// Reflection for Computer Synthesized Pictures", SIGGRAPH 1977.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use brdf::fresnel::{dielectric, reference::cook_torrance_gc};
+    /// let (c, eta) = (0.3_f64, 1.5);
+    /// assert!((cook_torrance_gc(c, eta) - dielectric(c, eta)).abs() < 1e-15);
+    /// ```
+    #[inline]
+    #[must_use]
+    pub fn cook_torrance_gc<R: Real>(cos_theta: R, eta: R) -> R {
+        let c = cos_theta.abs().min(R::one());
+        // g = η cos θt, cos θt formed as in `dielectric` (g = c at η = 1).
+        let (t, tir) = DielectricConsts::of(eta, eta.recip()).cos_t(c, c * c);
+        let g = eta * t;
+        let gpc = g + c;
+        let gmc = g - c;
+        let a = R::select(gpc.gt(R::zero()), gmc / gpc, R::zero());
+        let b = c.mul_add(gpc, -R::one()) / c.mul_add(gmc, R::one());
+        let f = (a * a * b.mul_add(b, R::one()) * R::from_f64(0.5)).min(R::one());
+        R::select(tir, R::one(), f)
+    }
+
+    /// Gulbrandsen's artist-friendly parameters → complex IOR: from reflectivity `r` (the
+    /// normal-incidence reflectance) and edge tint `g`, the `(n, k)` with `F0 = r`.
+    ///
+    /// ```text
+    /// n_min = (1 − r)/(1 + r),   n_max = (1 + √r)/(1 − √r)
+    /// n = g·n_min + (1 − g)·n_max
+    /// k = √( (r (n + 1)² − (n − 1)²) / (1 − r) )
+    /// ```
+    ///
+    /// `k` solves `F0(n, k) = r` for `k` (see [`f0_from_complex_ior`](super::f0_from_complex_ior)); real `k` needs
+    /// `n ∈ [(1−√r)/(1+√r), n_max]`, which `n ∈ [n_min, n_max]` satisfies. `g = 0` gives the
+    /// dielectric `n = n_max, k = 0`; `g = 1` the smallest `n` (`n_min`). Along the family `k`
+    /// is not monotonic: it peaks at `n = (1 + r)/(1 − r)`, inside `[n_min, n_max]`. The result is exact Fresnel: [`conductor`](super::conductor)`(1, n, k) = r`.
+    ///
+    /// * Domain `r ∈ [0, 1)`, `g ∈ [0, 1]`. As `r → 1`, `n_max` and `k` grow like `1/(1 − √r)`;
+    ///   shader implementations clamp `r ≤ 0.99`.
+    ///
+    /// Reference: O. Gulbrandsen, "Artist Friendly Metallic Fresnel", JCGT 3(4), 2014, §3.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use brdf::fresnel::f0_from_complex_ior;
+    /// use brdf::fresnel::reference::{gulbrandsen_from_nk, gulbrandsen_to_nk};
+    /// let (n, k) = gulbrandsen_to_nk(0.9_f64, 0.5);
+    /// assert!((f0_from_complex_ior(n, k) - 0.9).abs() < 1e-12);
+    /// let (r, g) = gulbrandsen_from_nk(n, k);
+    /// assert!((r - 0.9).abs() < 1e-12 && (g - 0.5).abs() < 1e-12);
+    /// ```
+    #[inline]
+    #[must_use]
+    pub fn gulbrandsen_to_nk<R: Real>(r: R, g: R) -> (R, R) {
+        let (n_min, n_max) = gulbrandsen_n_range(r);
+        // (1 − g)·n_max + g·n_min: exact at both ends (n_max ≫ n_min as r → 1).
+        let n = g.mul_add(n_min, (R::one() - g) * n_max);
+        let np = n + R::one();
+        let nm = n - R::one();
+        let k2 = (r * np).mul_add(np, -(nm * nm)) / (R::one() - r);
+        (n, k2.safe_sqrt())
+    }
+
+    /// Complex IOR → Gulbrandsen's artist-friendly `(r, g)`: reflectivity and edge tint.
+    ///
+    /// ```text
+    /// r = ((n − 1)² + k²) / ((n + 1)² + k²)
+    /// g = (n_max(r) − n) / (n_max(r) − n_min(r))
+    /// ```
+    ///
+    /// The exact inverse of [`gulbrandsen_to_nk`]. A measured metal may give `g` outside
+    /// `[0, 1]` (its `n` below `n_min(r)`); the mapping still round-trips, but artist UIs that
+    /// clamp `g` to `[0, 1]` then change the material. Domain `n ∈ (0, ∞)`, `k ∈ [0, ∞)` with
+    /// `r < 1` and `n_max ≠ n_min` (i.e. `r > 0`); `r = 0` (`n = 1, k = 0`) returns `g = 0`.
+    ///
+    /// Reference: Gulbrandsen 2014, §3.
+    #[inline]
+    #[must_use]
+    pub fn gulbrandsen_from_nk<R: Real>(n: R, k: R) -> (R, R) {
+        let r = f0_from_complex_ior(n, k);
+        let (n_min, n_max) = gulbrandsen_n_range(r);
+        let span = n_max - n_min;
+        let g = R::select(span.gt(R::zero()), (n_max - n) / span, R::zero());
+        (r, g)
+    }
+
+    #[inline]
+    fn gulbrandsen_n_range<R: Real>(r: R) -> (R, R) {
+        // n_max is the dielectric with F0 = r.
+        ((R::one() - r) / (R::one() + r), ior_from_f0(r))
     }
 }

@@ -50,7 +50,7 @@
 //! ## Where 2.04 comes from
 //!
 //! The talk says only that `n` depends on the shininess range and that the error is small.
-//! Under the minimax relative error ([`best_fit_offset`]), the optimum depends on the lower
+//! Under the minimax relative error ([`fit::best_fit_offset`]), the optimum depends on the lower
 //! end `s_min` alone once `s_max ≳ 23`: `n* = 3.528` for `[0, ·]`, `2.984` for `[2, ·]`,
 //! `2.218` for `[8, ·]`, `2.022` for `[16, ·]`, and **`n* = 2.040` for `s_min ≈ 14`**, where
 //! the fit's worst error is **0.143 %** (−0.142 % at `s = 14`, +0.143 % at `s ≈ 22.75`).
@@ -58,7 +58,7 @@
 //! "ほとんど誤差" (almost no error) holds; below `s = 14` the error grows to −2.7 % at
 //! `s = 8` and −49 % at `s = 0`. (A least-squares fit of the offset alone, slope fixed at
 //! `1/(8π)`, absolute error, over `[0, 221]` also gives 2.04: the mean of `n₀`; the slides
-//! lost the plot that fixed the range.) Use [`fit_error`] to measure any offset over your
+//! lost the plot that fixed the range.) Use [`fit::fit_error`] to measure any offset over your
 //! own range.
 //!
 //! # Precomputation
@@ -92,11 +92,12 @@ pub const TRI_ACE_OFFSET: f64 = 2.04;
 /// ([`Normalization::validate`]): `8`.
 ///
 /// The exact factor's own offset [`tri_ace_exact_offset`] lies in `(2, 4]`, so every fit
-/// worth using has `n` there (the seed's 2.04, the minimax optima of [`best_fit_offset`]);
+/// worth using has `n` there (the seed's 2.04, the minimax optima of
+/// [`fit::best_fit_offset`]);
 /// `[0, 8]` also admits the plain `s/(8π)` (`n = 0`) and *Real-Time Rendering*'s `(s + 8)/(8π)`
 /// ([`blinn_phong_rtr_approx`]). A larger offset brightens every lobe beyond its exact
 /// normalization, and an unbounded one overflows the factor in `f32` (an offset of `1e300`
-/// gave ∞). [`fit_error`] measures any finite offset.
+/// gave ∞). [`fit::fit_error`] measures any finite offset.
 pub const MAX_FIT_OFFSET: f64 = 8.0;
 
 /// [`crate::ndf::MAX_SHININESS`] (`2/MIN_ALPHA² − 2`), the bound of [`BlinnPhongLobe`]'s
@@ -461,7 +462,7 @@ pub enum Normalization {
     /// [`tri_ace_fit`]: `(s + offset)/(8π)`; the talk uses `offset = 2.04`.
     TriAceFit {
         /// The offset `n` of `(s + n)/(8π)`, in `[0, 8]` ([`MAX_FIT_OFFSET`]; see
-        /// [`best_fit_offset`]).
+        /// [`fit::best_fit_offset`]).
         offset: f64,
     },
     /// [`tri_ace_2010_fit`]: `0.0397436 s + 0.0856832`.
@@ -789,200 +790,215 @@ impl<const N: usize> NormalizationTable<N> {
     }
 }
 
-/// The relative error of a linear fit `(s + offset)/(8π)` against [`tri_ace_exact`] over a
-/// shininess range: where it is largest, and by how much.
+/// Tools that measure the linear fit `(s + n)/(8π)` of the seed's normalization against the
+/// exact factor [`tri_ace_exact`](crate::normalization::tri_ace_exact) over a shininess
+/// range: the error of a given offset ([`fit_error`](crate::normalization::fit::fit_error))
+/// and the minimax offset ([`best_fit_offset`](crate::normalization::fit::best_fit_offset)).
+/// For choosing an offset offline and for the report programs; rendering uses
+/// [`Normalization`](crate::normalization::Normalization).
 ///
-/// Relative error `e(s) = fit(s)/exact(s) − 1 = (offset − n₀(s))/(s + n₀(s))`, with
-/// `n₀` = [`tri_ace_exact_offset`]; negative where the fit is too dark.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FitError {
-    /// The offset `n` of the fit `(s + n)/(8π)`.
-    pub offset: f64,
-    /// `max |e(s)|` over the range: the minimax norm.
-    pub max_rel_error: f64,
-    /// A shininess where `|e|` reaches `max_rel_error`.
-    pub at_shininess: f64,
-    /// `max e(s)`: the largest overestimate (negative if the fit is too dark everywhere).
-    pub highest: f64,
-    /// Where `highest` is reached.
-    pub highest_at: f64,
-    /// `min e(s)`: the largest underestimate (positive if the fit is too bright everywhere).
-    pub lowest: f64,
-    /// Where `lowest` is reached.
-    pub lowest_at: f64,
-}
+/// Reference: Y. Gotanda, "Basic of Reflectance", tri-Ace, 2009 (the fit and its offset
+/// 2.04); the minimax search is this crate's.
+pub mod fit {
+    use super::{check_range, tri_ace_exact_offset};
+    use crate::Real;
+    use crate::error::{self, Error};
 
-/// Relative error of the fit with `offset` at `s`, without cancellation.
-#[inline]
-fn fit_rel_error(s: f64, offset: f64) -> f64 {
-    let n0 = tri_ace_exact_offset(s);
-    (offset - n0) / (s + n0)
-}
-
-/// Maximum of `f` over `[a, b]`: a grid of `GRID` cells uniform in `ln(1 + s)` (dense at
-/// low shininess, where the error varies fastest), then golden-section search on the two
-/// cells around the best node. Returns `(max, argmax)`.
-fn maximize(f: impl Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
-    const GRID: usize = 256;
-    let (ua, ub) = (Real::ln(1.0 + a), Real::ln(1.0 + b));
-    let node = |k: usize| -> f64 {
-        match k {
-            0 => a,
-            GRID => b,
-            _ => (Real::exp(ua + (ub - ua) * k as f64 / GRID as f64) - 1.0).clamp(a, b),
-        }
-    };
-    let (mut best, mut arg, mut k_best) = (f(a), a, 0);
-    for k in 1..=GRID {
-        let s = node(k);
-        let v = f(s);
-        if v > best {
-            (best, arg, k_best) = (v, s, k);
-        }
+    /// The relative error of a linear fit `(s + offset)/(8π)` against [`tri_ace_exact`](super::tri_ace_exact) over a
+    /// shininess range: where it is largest, and by how much.
+    ///
+    /// Relative error `e(s) = fit(s)/exact(s) − 1 = (offset − n₀(s))/(s + n₀(s))`, with
+    /// `n₀` = [`tri_ace_exact_offset`](super::tri_ace_exact_offset); negative where the fit is too dark.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct FitError {
+        /// The offset `n` of the fit `(s + n)/(8π)`.
+        pub offset: f64,
+        /// `max |e(s)|` over the range: the minimax norm.
+        pub max_rel_error: f64,
+        /// A shininess where `|e|` reaches `max_rel_error`.
+        pub at_shininess: f64,
+        /// `max e(s)`: the largest overestimate (negative if the fit is too dark everywhere).
+        pub highest: f64,
+        /// Where `highest` is reached.
+        pub highest_at: f64,
+        /// `min e(s)`: the largest underestimate (positive if the fit is too bright everywhere).
+        pub lowest: f64,
+        /// Where `lowest` is reached.
+        pub lowest_at: f64,
     }
-    // Golden-section search on [node(k−1), node(k+1)] (a unimodal bracket when the grid
-    // resolves the extremum).
-    let (mut lo, mut hi) = (node(k_best.saturating_sub(1)), node((k_best + 1).min(GRID)));
-    const INV_PHI: f64 = 0.618_033_988_749_894_9;
-    let mut x1 = hi - INV_PHI * (hi - lo);
-    let mut x2 = lo + INV_PHI * (hi - lo);
-    let (mut f1, mut f2) = (f(x1), f(x2));
-    for _ in 0..120 {
-        if hi - lo <= f64::EPSILON * hi.abs().max(1e-300) {
-            break;
+
+    /// Relative error of the fit with `offset` at `s`, without cancellation.
+    #[inline]
+    fn fit_rel_error(s: f64, offset: f64) -> f64 {
+        let n0 = tri_ace_exact_offset(s);
+        (offset - n0) / (s + n0)
+    }
+
+    /// Maximum of `f` over `[a, b]`: a grid of `GRID` cells uniform in `ln(1 + s)` (dense at
+    /// low shininess, where the error varies fastest), then golden-section search on the two
+    /// cells around the best node. Returns `(max, argmax)`.
+    fn maximize(f: impl Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
+        const GRID: usize = 256;
+        let (ua, ub) = (Real::ln(1.0 + a), Real::ln(1.0 + b));
+        let node = |k: usize| -> f64 {
+            match k {
+                0 => a,
+                GRID => b,
+                _ => (Real::exp(ua + (ub - ua) * k as f64 / GRID as f64) - 1.0).clamp(a, b),
+            }
+        };
+        let (mut best, mut arg, mut k_best) = (f(a), a, 0);
+        for k in 1..=GRID {
+            let s = node(k);
+            let v = f(s);
+            if v > best {
+                (best, arg, k_best) = (v, s, k);
+            }
         }
-        if f1 < f2 {
-            lo = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = lo + INV_PHI * (hi - lo);
-            f2 = f(x2);
+        // Golden-section search on [node(k−1), node(k+1)] (a unimodal bracket when the grid
+        // resolves the extremum).
+        let (mut lo, mut hi) = (node(k_best.saturating_sub(1)), node((k_best + 1).min(GRID)));
+        const INV_PHI: f64 = 0.618_033_988_749_894_9;
+        let mut x1 = hi - INV_PHI * (hi - lo);
+        let mut x2 = lo + INV_PHI * (hi - lo);
+        let (mut f1, mut f2) = (f(x1), f(x2));
+        for _ in 0..120 {
+            if hi - lo <= f64::EPSILON * hi.abs().max(1e-300) {
+                break;
+            }
+            if f1 < f2 {
+                lo = x1;
+                x1 = x2;
+                f1 = f2;
+                x2 = lo + INV_PHI * (hi - lo);
+                f2 = f(x2);
+            } else {
+                hi = x2;
+                x2 = x1;
+                f2 = f1;
+                x1 = hi - INV_PHI * (hi - lo);
+                f1 = f(x1);
+            }
+        }
+        for (v, s) in [(f1, x1), (f2, x2)] {
+            if v > best {
+                (best, arg) = (v, s);
+            }
+        }
+        (best, arg)
+    }
+
+    /// `(max e, argmax, min e, argmin)` of the fit's relative error over `[a, b]`.
+    fn error_extremes(offset: f64, a: f64, b: f64) -> (f64, f64, f64, f64) {
+        let (hi, hi_at) = maximize(|s| fit_rel_error(s, offset), a, b);
+        let (neg_lo, lo_at) = maximize(|s| -fit_rel_error(s, offset), a, b);
+        (hi, hi_at, -neg_lo, lo_at)
+    }
+
+    /// Measures the linear fit `(s + offset)/(8π)` against the exact factor [`tri_ace_exact`](super::tri_ace_exact)
+    /// over `[s_min, s_max]`: the maximum relative error and where it peaks.
+    ///
+    /// ```text
+    /// e(s) = (s + offset)/(8π) / c(s) − 1 = (offset − n₀(s)) / (s + n₀(s))
+    /// max_rel_error = max_{s ∈ [s_min, s_max]} |e(s)|
+    /// ```
+    ///
+    /// Use it to see what the cheap fit costs on your own content's shininess range.
+    ///
+    /// # Method
+    ///
+    /// `e` is evaluated on 257 points uniform in `ln(1 + s)` plus the ends, and the best point
+    /// is refined by golden-section search to full precision. For `offset ≤ 2`, `e` increases
+    /// monotonically; for `2 < offset ≤ 4` it rises to one interior maximum and then decays
+    /// (`e′(s) ∝ (s + n)(s + 2)·(ln 2/2)·2^(−s/2) − (n − 2)(2 − 2^(−s/2))`); both shapes are
+    /// resolved by the grid (checked against a dense scan in the tests).
+    ///
+    /// # Errors
+    ///
+    /// `offset` not finite; `s_min` not finite or negative; `s_max` not finite or below
+    /// `s_min`.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use brdf::normalization::{TRI_ACE_OFFSET, fit::fit_error};
+    /// let e = fit_error(TRI_ACE_OFFSET, 0.0, 1e4)?;
+    /// assert!((e.max_rel_error - 0.49).abs() < 1e-12 && e.at_shininess == 0.0);
+    /// let e = fit_error(TRI_ACE_OFFSET, 16.0, 1e4)?;
+    /// assert!(e.max_rel_error < 1.5e-3 && (e.at_shininess - 22.75).abs() < 0.1);
+    /// # Ok::<(), brdf::Error>(())
+    /// ```
+    pub fn fit_error(offset: f64, s_min: f64, s_max: f64) -> Result<FitError, Error> {
+        error::check_f64("offset", offset, "(−∞, ∞)", |_| true)?;
+        check_range(s_min, s_max, false, false)?;
+        Ok(fit_error_unchecked(offset, s_min, s_max))
+    }
+
+    fn fit_error_unchecked(offset: f64, s_min: f64, s_max: f64) -> FitError {
+        let (highest, highest_at, lowest, lowest_at) = error_extremes(offset, s_min, s_max);
+        let (max_rel_error, at_shininess) = if highest >= -lowest {
+            (highest.abs(), highest_at)
         } else {
-            hi = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = hi - INV_PHI * (hi - lo);
-            f1 = f(x1);
+            (lowest.abs(), lowest_at)
+        };
+        FitError {
+            offset,
+            max_rel_error,
+            at_shininess,
+            highest,
+            highest_at,
+            lowest,
+            lowest_at,
         }
     }
-    for (v, s) in [(f1, x1), (f2, x2)] {
-        if v > best {
-            (best, arg) = (v, s);
+
+    /// The offset `n` minimizing the maximum relative error of `(s + n)/(8π)` against
+    /// [`tri_ace_exact`](super::tri_ace_exact) over `[s_min, s_max]`, with that error.
+    ///
+    /// ```text
+    /// n* = argmin_n max_{s ∈ [s_min, s_max]} |(n − n₀(s)) / (s + n₀(s))|      (minimax relative error)
+    /// ```
+    ///
+    /// # Method
+    ///
+    /// `e(s, n)` increases strictly with `n` at every `s`, so `U(n) = max_s e` and
+    /// `L(n) = min_s e` are increasing, and the minimax optimum is the root of `U(n) + L(n)`,
+    /// where over- and underestimate balance (`U = −L`). It lies in `[2, 4]` because
+    /// `2 < n₀(s) ≤ 4` (all errors are `≤ 0` at `n = 2` and `≥ 0` at `n = 4`); bisection finds
+    /// it to machine precision. Each `U`, `L` comes from the search of [`fit_error`].
+    ///
+    /// For `[s_min, ∞)`-like ranges (`s_max ≳ 23`) the optimum depends on `s_min` only:
+    /// `s_min = 0 → n* = 3.528` (error 11.8 %), `8 → 2.218` (1.0 %), `14 → 2.040` (0.143 %:
+    /// the seed talk's value), `16 → 2.022` (0.073 %).
+    ///
+    /// # Errors
+    ///
+    /// `s_min` not finite or negative; `s_max` not finite or below `s_min`.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use brdf::normalization::fit::best_fit_offset;
+    /// let best = best_fit_offset(14.0, 1e4)?;
+    /// assert!((best.offset - 2.04).abs() < 1e-3);
+    /// assert!(best.max_rel_error < 1.5e-3);
+    /// # Ok::<(), brdf::Error>(())
+    /// ```
+    pub fn best_fit_offset(s_min: f64, s_max: f64) -> Result<FitError, Error> {
+        check_range(s_min, s_max, false, false)?;
+        let (mut lo, mut hi) = (2.0f64, 4.0f64);
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            let (u, _, l, _) = error_extremes(mid, s_min, s_max);
+            if u + l > 0.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
         }
+        Ok(fit_error_unchecked(0.5 * (lo + hi), s_min, s_max))
     }
-    (best, arg)
-}
-
-/// `(max e, argmax, min e, argmin)` of the fit's relative error over `[a, b]`.
-fn error_extremes(offset: f64, a: f64, b: f64) -> (f64, f64, f64, f64) {
-    let (hi, hi_at) = maximize(|s| fit_rel_error(s, offset), a, b);
-    let (neg_lo, lo_at) = maximize(|s| -fit_rel_error(s, offset), a, b);
-    (hi, hi_at, -neg_lo, lo_at)
-}
-
-/// Measures the linear fit `(s + offset)/(8π)` against the exact factor [`tri_ace_exact`]
-/// over `[s_min, s_max]`: the maximum relative error and where it peaks.
-///
-/// ```text
-/// e(s) = (s + offset)/(8π) / c(s) − 1 = (offset − n₀(s)) / (s + n₀(s))
-/// max_rel_error = max_{s ∈ [s_min, s_max]} |e(s)|
-/// ```
-///
-/// Use it to see what the cheap fit costs on your own content's shininess range.
-///
-/// # Method
-///
-/// `e` is evaluated on 257 points uniform in `ln(1 + s)` plus the ends, and the best point
-/// is refined by golden-section search to full precision. For `offset ≤ 2`, `e` increases
-/// monotonically; for `2 < offset ≤ 4` it rises to one interior maximum and then decays
-/// (`e′(s) ∝ (s + n)(s + 2)·(ln 2/2)·2^(−s/2) − (n − 2)(2 − 2^(−s/2))`); both shapes are
-/// resolved by the grid (checked against a dense scan in the tests).
-///
-/// # Errors
-///
-/// `offset` not finite; `s_min` not finite or negative; `s_max` not finite or below
-/// `s_min`.
-///
-/// # Examples
-///
-/// ```
-/// use brdf::normalization::{fit_error, TRI_ACE_OFFSET};
-/// let e = fit_error(TRI_ACE_OFFSET, 0.0, 1e4)?;
-/// assert!((e.max_rel_error - 0.49).abs() < 1e-12 && e.at_shininess == 0.0);
-/// let e = fit_error(TRI_ACE_OFFSET, 16.0, 1e4)?;
-/// assert!(e.max_rel_error < 1.5e-3 && (e.at_shininess - 22.75).abs() < 0.1);
-/// # Ok::<(), brdf::Error>(())
-/// ```
-pub fn fit_error(offset: f64, s_min: f64, s_max: f64) -> Result<FitError, Error> {
-    error::check_f64("offset", offset, "(−∞, ∞)", |_| true)?;
-    check_range(s_min, s_max, false, false)?;
-    Ok(fit_error_unchecked(offset, s_min, s_max))
-}
-
-fn fit_error_unchecked(offset: f64, s_min: f64, s_max: f64) -> FitError {
-    let (highest, highest_at, lowest, lowest_at) = error_extremes(offset, s_min, s_max);
-    let (max_rel_error, at_shininess) = if highest >= -lowest {
-        (highest.abs(), highest_at)
-    } else {
-        (lowest.abs(), lowest_at)
-    };
-    FitError {
-        offset,
-        max_rel_error,
-        at_shininess,
-        highest,
-        highest_at,
-        lowest,
-        lowest_at,
-    }
-}
-
-/// The offset `n` minimizing the maximum relative error of `(s + n)/(8π)` against
-/// [`tri_ace_exact`] over `[s_min, s_max]`, with that error.
-///
-/// ```text
-/// n* = argmin_n max_{s ∈ [s_min, s_max]} |(n − n₀(s)) / (s + n₀(s))|      (minimax relative error)
-/// ```
-///
-/// # Method
-///
-/// `e(s, n)` increases strictly with `n` at every `s`, so `U(n) = max_s e` and
-/// `L(n) = min_s e` are increasing, and the minimax optimum is the root of `U(n) + L(n)`,
-/// where over- and underestimate balance (`U = −L`). It lies in `[2, 4]` because
-/// `2 < n₀(s) ≤ 4` (all errors are `≤ 0` at `n = 2` and `≥ 0` at `n = 4`); bisection finds
-/// it to machine precision. Each `U`, `L` comes from the search of [`fit_error`].
-///
-/// For `[s_min, ∞)`-like ranges (`s_max ≳ 23`) the optimum depends on `s_min` only:
-/// `s_min = 0 → n* = 3.528` (error 11.8 %), `8 → 2.218` (1.0 %), `14 → 2.040` (0.143 %:
-/// the seed talk's value), `16 → 2.022` (0.073 %).
-///
-/// # Errors
-///
-/// `s_min` not finite or negative; `s_max` not finite or below `s_min`.
-///
-/// # Examples
-///
-/// ```
-/// use brdf::normalization::best_fit_offset;
-/// let best = best_fit_offset(14.0, 1e4)?;
-/// assert!((best.offset - 2.04).abs() < 1e-3);
-/// assert!(best.max_rel_error < 1.5e-3);
-/// # Ok::<(), brdf::Error>(())
-/// ```
-pub fn best_fit_offset(s_min: f64, s_max: f64) -> Result<FitError, Error> {
-    check_range(s_min, s_max, false, false)?;
-    let (mut lo, mut hi) = (2.0f64, 4.0f64);
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        let (u, _, l, _) = error_extremes(mid, s_min, s_max);
-        if u + l > 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    Ok(fit_error_unchecked(0.5 * (lo + hi), s_min, s_max))
 }

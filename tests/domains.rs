@@ -660,7 +660,7 @@ proptest! {
                     ("cos_theta_t", a.cos_theta_t, in_unit),
                     ("conductor", fresnel::conductor(c, n, kk), in_unit),
                     ("conductor k = 0", fresnel::conductor(c, n, R::zero()), in_unit),
-                    ("cook_torrance_gc", fresnel::cook_torrance_gc(c, n), in_unit),
+                    ("cook_torrance_gc", fresnel::reference::cook_torrance_gc(c, n), in_unit),
                 ];
                 for (name, v, ok) in checks {
                     if let Some(x) = bad(v, ok) {

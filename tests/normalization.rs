@@ -9,6 +9,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 use brdf::Error;
 use brdf::ndf::MAX_SHININESS;
+use brdf::normalization::fit::*;
 use brdf::normalization::*;
 use proptest::prelude::*;
 

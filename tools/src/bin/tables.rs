@@ -125,9 +125,9 @@ fn main() {
         );
     }
     for (lo, hi) in [(1.0, 1e4), (8.0, 1e4), (16.0, 1e4), (0.0, 1e6)] {
-        let e = normalization::fit_error(normalization::TRI_ACE_OFFSET, lo, hi)
+        let e = normalization::fit::fit_error(normalization::TRI_ACE_OFFSET, lo, hi)
             .expect("valid shininess range");
-        let best = normalization::best_fit_offset(lo, hi).expect("valid shininess range");
+        let best = normalization::fit::best_fit_offset(lo, hi).expect("valid shininess range");
         println!(
             "\ns ∈ [{lo}, {hi}]: offset 2.04 has max |relative error| {:.3}% (at s = {:.2}); \
              the minimax offset is {:.4} with {:.3}%.",

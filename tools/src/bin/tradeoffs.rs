@@ -800,7 +800,7 @@ fn normalization_table() -> Table {
             cost_fit,
         );
         // Cross-check against the crate's own maximizer.
-        let fe = norm::fit_error(norm::TRI_ACE_OFFSET, lo, hi).expect("valid range");
+        let fe = norm::fit::fit_error(norm::TRI_ACE_OFFSET, lo, hi).expect("valid range");
         if (fe.max_rel_error - r).abs() > 1e-3 * fe.max_rel_error {
             eprintln!(
                 "disagreement: grid max {r:e} vs fit_error {:e} on [{lo}, {hi}]",
@@ -818,7 +818,7 @@ fn normalization_table() -> Table {
         );
     }
     for &(lo, hi) in &ranges {
-        let best = norm::best_fit_offset(lo, hi).expect("valid range");
+        let best = norm::fit::best_fit_offset(lo, hi).expect("valid range");
         let n = best.offset;
         measure(
             format!("`(s + {n:.3})/(8π)` (`best_fit_offset`)"),
