@@ -29,24 +29,6 @@ pub fn uniform_hemisphere<R: Real>(u1: R, u2: R) -> Vec3<R> {
     Vec3::new(r * phi.cos(), r * phi.sin(), z)
 }
 
-/// Warps `(u1, u2) ∈ [0, 1]²` to the upper hemisphere with density `cos θ / π`.
-///
-/// ```text
-/// sin θ = √u1,  cos θ = √(1 − u1),  φ = 2π u2,  pdf = cos θ / π
-/// ```
-///
-/// (Malley's method in its polar form: a uniform disk sample lifted to the hemisphere.)
-/// `u1 = 1` gives a horizon direction, `u1 = 0` the normal. Reference: M. Pharr, W. Jakob,
-/// G. Humphreys, *Physically Based Rendering*, 4th ed., 2023, §A.5.3.
-#[inline]
-#[must_use]
-pub fn cosine_hemisphere<R: Real>(u1: R, u2: R) -> Vec3<R> {
-    let r = u1.safe_sqrt();
-    let z = (R::one() - u1).safe_sqrt();
-    let phi = R::from_f64(2.0 * PI) * u2;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
-}
-
 /// Fractional part of the golden ratio: successive multiples are maximally spread in `[0, 1)`.
 const GOLDEN_FRACTION: f64 = 0.618_033_988_749_894_8;
 

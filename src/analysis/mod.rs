@@ -208,9 +208,12 @@ pub use albedo::{
 };
 pub use checks::{FurnaceReport, Violation, Worst, reciprocity_check, white_furnace};
 pub use grid::{
-    DirectionGrid, FibonacciHemisphere, GridDirections, GridPairs, cosine_hemisphere,
-    fibonacci_hemisphere, uniform_hemisphere,
+    DirectionGrid, FibonacciHemisphere, GridDirections, GridPairs, fibonacci_hemisphere,
+    uniform_hemisphere,
 };
+/// The cosine-weighted warp lives with the samplers ([`crate::sampling`]); it is listed here
+/// with the other direction sets.
+pub use crate::sampling::cosine_hemisphere;
 pub use integrand::{FnBrdf, Integrand};
 
 #[allow(unused_imports)]

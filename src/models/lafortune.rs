@@ -326,7 +326,7 @@ impl<R: Real, const N: usize, const K: usize> SampleBrdf<R, N> for Lafortune<R, 
     #[inline(always)]
     fn sample(&self, wo: Vec3<R>, u: [R; 3]) -> Sample<R, N> {
         let (lobes, pd, pj) = self.mixture(wo);
-        let mut wi = crate::analysis::cosine_hemisphere(u[0], u[1]);
+        let mut wi = crate::sampling::cosine_hemisphere(u[0], u[1]);
         let mut acc = pd;
         for (l, &p) in lobes.iter().zip(&pj) {
             let w = sample_cos_power(l.axis, l.e, u[0], u[1]);

@@ -264,7 +264,7 @@ pub(crate) fn sample_diffuse_and_half<R: Real, const N: usize, H: HalfLobe<R>>(
     u: [R; 3],
     eval: impl Fn(Vec3<R>) -> [R; N],
 ) -> Sample<R, N> {
-    let wd = crate::analysis::cosine_hemisphere(u[0], u[1]);
+    let wd = super::cosine_hemisphere(u[0], u[1]);
     let (ws, ok_s) = reflect(wo, lobe.draw(u[0], u[1]));
     let choose_d = u[2].lt(pd);
     let wi = select_vec(choose_d, wd, ws);

@@ -121,8 +121,26 @@ pub trait SampleBrdf<R: Real, const N: usize>: Brdf<R, N> {
     }
 }
 
+/// Warps `(u1, u2) ∈ [0, 1]²` to the upper hemisphere with density `cos θ / π`.
+///
+/// ```text
+/// sin θ = √u1,  cos θ = √(1 − u1),  φ = 2π u2,  pdf = cos θ / π
+/// ```
+///
+/// (Malley's method in its polar form: a uniform disk sample lifted to the hemisphere.)
+/// `u1 = 1` gives a horizon direction, `u1 = 0` the normal. Reference: M. Pharr, W. Jakob,
+/// G. Humphreys, *Physically Based Rendering*, 4th ed., 2023, §A.5.3.
+#[inline]
+#[must_use]
+pub fn cosine_hemisphere<R: Real>(u1: R, u2: R) -> Vec3<R> {
+    let r = u1.safe_sqrt();
+    let z = (R::one() - u1).safe_sqrt();
+    let phi = R::from_f64(2.0 * core::f64::consts::PI) * u2;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
 /// Cosine-weighted hemisphere density `max(0, cos θ) / π` of the warp
-/// [`cosine_hemisphere`](crate::analysis::cosine_hemisphere).
+/// [`cosine_hemisphere`].
 #[inline(always)]
 #[must_use]
 pub fn cosine_hemisphere_pdf<R: Real>(w: Vec3<R>) -> R {
@@ -139,7 +157,7 @@ pub fn sample_cosine<R: Real, const N: usize, B: Brdf<R, N> + ?Sized>(
     wo: Vec3<R>,
     u: [R; 3],
 ) -> Sample<R, N> {
-    let wi = crate::analysis::cosine_hemisphere(u[0], u[1]);
+    let wi = cosine_hemisphere(u[0], u[1]);
     let pdf = cosine_hemisphere_pdf(wi);
     let f = model.eval(wi, wo);
     let weight = crate::real::channels(|c| f[c] * R::pi());
