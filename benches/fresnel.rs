@@ -99,7 +99,10 @@ fn fresnel_benches(crit: &mut Criterion) {
 
     let mut g = crit.benchmark_group("fresnel_cook_torrance_gc");
     g.throughput(Throughput::Elements(N as u64));
-    all_types!(g, &c, |x: R| fresnel::reference::cook_torrance_gc(x, R::from_f64(eta)));
+    all_types!(g, &c, |x: R| fresnel::reference::cook_torrance_gc(
+        x,
+        R::from_f64(eta)
+    ));
     g.finish();
 }
 

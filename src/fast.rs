@@ -134,9 +134,9 @@
 //! Build with `-C target-feature=+fma` (or `target-cpu`) to fuse everywhere.
 //!
 
-use crate::real::Real;
 #[cfg(doc)]
 use crate::real::Bits;
+use crate::real::Real;
 
 /// Coefficients of `q` in `2ᶠ ≈ 1 + f·q(f)`, `f ∈ [0, 1]`, by polynomial degree `D` of
 /// `1 + f·q(f)` (index `D`, `2 ≤ D ≤ 8`; `q` has degree `D − 1`, coefficients by increasing

@@ -639,8 +639,10 @@ macro_rules! impl_lanes {
             #[inline(always)]
             fn exponent_split(self) -> (Self, Self) {
                 let b: $u = cast(self);
-                let biased = b.unbounded_shr_scalar($l::MANTISSA_BITS) & <$u>::splat($l::EXPONENT_MASK);
-                let two_pow_plus_biased = cast::<$u, $v>(biased | <$u>::splat($l::TWO_POW_MANTISSA_BITS));
+                let biased =
+                    b.unbounded_shr_scalar($l::MANTISSA_BITS) & <$u>::splat($l::EXPONENT_MASK);
+                let two_pow_plus_biased =
+                    cast::<$u, $v>(biased | <$u>::splat($l::TWO_POW_MANTISSA_BITS));
                 let e = two_pow_plus_biased - <$v>::splat($l::EXPONENT_OFFSET);
                 let fraction = b & <$u>::splat($l::FRACTION_MASK);
                 let m = cast::<$u, $v>(fraction | <$u>::splat($l::ONE_BITS));
@@ -810,17 +812,7 @@ impl Real for F32Fma {
     fn from_fn(mut f: impl FnMut(usize) -> f32) -> Self {
         F32Fma(f(0))
     }
-    via_f32!(
-        sqrt,
-        abs,
-        exp,
-        exp2,
-        ln,
-        log2,
-        sin,
-        cos,
-        floor
-    );
+    via_f32!(sqrt, abs, exp, exp2, ln, log2, sin, cos, floor);
     #[inline(always)]
     fn min(self, other: Self) -> Self {
         F32Fma(<f32 as Real>::min(self.0, other.0))

@@ -17,8 +17,14 @@ fn root() -> PathBuf {
 /// layer above it; other lines continue a description.
 fn layers() -> Vec<Vec<String>> {
     let doc = fs::read_to_string(root().join("ARCHITECTURE.md")).expect("ARCHITECTURE.md");
-    let section = doc.split("## Layers").nth(1).expect("a `## Layers` section");
-    let block = section.split("```").nth(1).expect("a code block under `## Layers`");
+    let section = doc
+        .split("## Layers")
+        .nth(1)
+        .expect("a `## Layers` section");
+    let block = section
+        .split("```")
+        .nth(1)
+        .expect("a code block under `## Layers`");
     let mut layers: Vec<Vec<String>> = Vec::new();
     for line in block.lines().skip(1) {
         let name: String = line
@@ -174,12 +180,12 @@ fn every_module_depends_only_on_the_layers_above_it() {
                     "{}: `{module}` uses `crate::{first}` (module `{target}`, a layer below it)",
                     file.display()
                 )),
-                None if target.chars().next().is_some_and(char::is_uppercase) => problems.push(
-                    format!(
+                None if target.chars().next().is_some_and(char::is_uppercase) => {
+                    problems.push(format!(
                         "{}: `crate::{first}` is neither a module nor a root re-export",
                         file.display()
-                    ),
-                ),
+                    ))
+                }
                 None => problems.push(format!(
                     "{}: `{module}` uses `crate::{first}`, a module missing from the layer list",
                     file.display()
@@ -205,5 +211,8 @@ fn the_checker_reads_paths_groups_and_layers() {
     assert!(pos("ior") < pos("fresnel"), "ior is data below fresnel");
     assert!(pos("math") < pos("real"));
     assert_eq!(pos("sampling"), pos("models"));
-    assert_eq!(root_reexports().get("Real").map(String::as_str), Some("real"));
+    assert_eq!(
+        root_reexports().get("Real").map(String::as_str),
+        Some("real")
+    );
 }

@@ -448,7 +448,8 @@ fn blinn_1977_distributions() {
     let b = Beckmann::<f64>::new(a).unwrap();
     for &(th, tol) in &[(0.01, 1e-3), (0.05, 5e-3), (0.1, 2e-2)] {
         let (s, c) = f64::sin_cos(th);
-        let r = ndf::reference::blinn1977_d2(th, 1.0 / a) / (PI * a * a * b.d(Vec3::new(s, 0.0, c)));
+        let r =
+            ndf::reference::blinn1977_d2(th, 1.0 / a) / (PI * a * a * b.d(Vec3::new(s, 0.0, c)));
         assert!((r - 1.0).abs() < tol, "θ={th}: ratio {r}");
     }
 }
@@ -508,7 +509,10 @@ fn isotropic_constructors_name_alpha() {
     };
     assert_eq!(Ggx::<f64>::new(0.0).unwrap_err(), out("alpha", 0.0));
     assert_eq!(Beckmann::<f64>::new(0.0).unwrap_err(), out("alpha", 0.0));
-    assert_eq!(GgxIsotropic::<f64>::new(0.0).unwrap_err(), out("alpha", 0.0));
+    assert_eq!(
+        GgxIsotropic::<f64>::new(0.0).unwrap_err(),
+        out("alpha", 0.0)
+    );
     assert_eq!(Ggx::<f32>::new(2.0).unwrap_err(), out("alpha", 2.0));
     assert_eq!(
         Beckmann::<f64>::from_roughness(0.005).unwrap_err(),
@@ -533,8 +537,14 @@ fn isotropic_constructors_name_alpha() {
     // The isotropic constructor builds the same constants as the anisotropic one.
     for a in [1e-4, 0.3, 1.0] {
         assert_eq!(Ggx::<f64>::new(a), Ggx::anisotropic(a, a));
-        assert_eq!(Beckmann::<f32>::new(a as f32), Beckmann::anisotropic(a as f32, a as f32));
-        assert_eq!(Ok(Ggx::from(GgxIsotropic::<f64>::new(a).unwrap())), Ggx::new(a));
+        assert_eq!(
+            Beckmann::<f32>::new(a as f32),
+            Beckmann::anisotropic(a as f32, a as f32)
+        );
+        assert_eq!(
+            Ok(Ggx::from(GgxIsotropic::<f64>::new(a).unwrap())),
+            Ggx::new(a)
+        );
     }
 }
 

@@ -202,6 +202,9 @@ mod integrand;
 mod quadrature;
 
 pub use crate::models::Kinks;
+/// The cosine-weighted warp lives with the samplers ([`crate::sampling`]); it is listed here
+/// with the other direction sets.
+pub use crate::sampling::cosine_hemisphere;
 pub use albedo::{
     AlbedoConfig, AlbedoEstimate, F32Brdf, HemisphericalConfig, directional_albedo,
     directional_albedo_estimate, hemispherical_albedo,
@@ -211,9 +214,6 @@ pub use grid::{
     DirectionGrid, FibonacciHemisphere, GridDirections, GridPairs, fibonacci_hemisphere,
     uniform_hemisphere,
 };
-/// The cosine-weighted warp lives with the samplers ([`crate::sampling`]); it is listed here
-/// with the other direction sets.
-pub use crate::sampling::cosine_hemisphere;
 pub use integrand::{FnBrdf, Integrand};
 
 #[allow(unused_imports)]
