@@ -1508,9 +1508,9 @@ impl<S: Scalar> Dielectric<S> {
 
 /// Formulas from the literature kept for comparison and conversion rather than as Fresnel
 /// terms: Cook & Torrance's `(g, c)` form of the dielectric reflectance (algebraically
-/// [`dielectric`](crate::fresnel::dielectric), tested equal) and Gulbrandsen's
+/// [`dielectric`], tested equal) and Gulbrandsen's
 /// artist-friendly reflectivity/edge-tint mapping to a complex IOR (the model-facing entry
-/// point is [`Conductor::from_reflectivity_edge_tint`](crate::fresnel::Conductor::from_reflectivity_edge_tint)).
+/// point is [`Conductor::from_reflectivity_edge_tint`]).
 ///
 /// References: R. L. Cook, K. E. Torrance, ACM Trans. Graph. 1(1), 1982; O. Gulbrandsen,
 /// "Artist Friendly Metallic Fresnel", JCGT 3(4), 2014.
@@ -1571,7 +1571,7 @@ pub mod reference {
     /// k = √( (r (n + 1)² − (n − 1)²) / (1 − r) )
     /// ```
     ///
-    /// `k` solves `F0(n, k) = r` for `k` (see [`f0_from_complex_ior`](super::f0_from_complex_ior)); real `k` needs
+    /// `k` solves `F0(n, k) = r` for `k` (see [`f0_from_complex_ior`]); real `k` needs
     /// `n ∈ [(1−√r)/(1+√r), n_max]`, which `n ∈ [n_min, n_max]` satisfies. `g = 0` gives the
     /// dielectric `n = n_max, k = 0`; `g = 1` the smallest `n` (`n_min`). Along the family `k`
     /// is not monotonic: it peaks at `n = (1 + r)/(1 − r)`, inside `[n_min, n_max]`. The result is exact Fresnel: [`conductor`](super::conductor)`(1, n, k) = r`.

@@ -46,7 +46,7 @@
 //!
 //! # Reference-only: Blinn 1977
 //!
-//! [`reference`] holds [`reference::blinn1977_d1`], [`reference::blinn1977_d2`] and
+//! [`mod@reference`] holds [`reference::blinn1977_d1`], [`reference::blinn1977_d2`] and
 //! [`reference::blinn1977_d3`]: Blinn's three un-normalized distributions (peak value 1),
 //! with the half-intensity constants of each. They are for comparison only and do not
 //! implement [`Ndf`].
@@ -1442,9 +1442,9 @@ impl<R: Real> ProjectedAlpha<R> for AnyNdf<R> {
 
 /// Distributions from the literature kept for comparison, not for rendering: Blinn's three
 /// un-normalized distributions of 1977 (peak value 1) and the constants that give each a
-/// half-intensity angle. They do not implement [`Ndf`](crate::ndf::Ndf); their normalized
-/// counterparts do (`D1` ↔ [`BlinnPhong`](crate::ndf::BlinnPhong), `D3` ↔
-/// [`Ggx`](crate::ndf::Ggx), `D2` ≈ [`Beckmann`](crate::ndf::Beckmann) for small angles,
+/// half-intensity angle. They do not implement [`Ndf`]; their normalized
+/// counterparts do (`D1` ↔ [`BlinnPhong`], `D3` ↔
+/// [`Ggx`], `D2` ≈ [`Beckmann`] for small angles,
 /// each relation tested in `tests/ndf.rs`).
 ///
 /// Reference: J. F. Blinn, "Models of light reflection for computer synthesized pictures",

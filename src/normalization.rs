@@ -791,11 +791,11 @@ impl<const N: usize> NormalizationTable<N> {
 }
 
 /// Tools that measure the linear fit `(s + n)/(8π)` of the seed's normalization against the
-/// exact factor [`tri_ace_exact`](crate::normalization::tri_ace_exact) over a shininess
-/// range: the error of a given offset ([`fit_error`](crate::normalization::fit::fit_error))
-/// and the minimax offset ([`best_fit_offset`](crate::normalization::fit::best_fit_offset)).
+/// exact factor [`tri_ace_exact`] over a shininess
+/// range: the error of a given offset ([`fit_error`](fit::fit_error))
+/// and the minimax offset ([`best_fit_offset`](fit::best_fit_offset)).
 /// For choosing an offset offline and for the report programs; rendering uses
-/// [`Normalization`](crate::normalization::Normalization).
+/// [`Normalization`].
 ///
 /// Reference: Y. Gotanda, "Basic of Reflectance", tri-Ace, 2009 (the fit and its offset
 /// 2.04); the minimax search is this crate's.
@@ -808,7 +808,7 @@ pub mod fit {
     /// shininess range: where it is largest, and by how much.
     ///
     /// Relative error `e(s) = fit(s)/exact(s) − 1 = (offset − n₀(s))/(s + n₀(s))`, with
-    /// `n₀` = [`tri_ace_exact_offset`](super::tri_ace_exact_offset); negative where the fit is too dark.
+    /// `n₀` = [`tri_ace_exact_offset`]; negative where the fit is too dark.
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct FitError {
         /// The offset `n` of the fit `(s + n)/(8π)`.
