@@ -55,9 +55,10 @@ use wide::{u32x4, u32x8, u32x16, u64x4};
 
 /// A number or a SIMD register of numbers on which every formula of the crate runs.
 ///
-/// Implemented for `f32`, `f64`, [`F32Fma`], [`f32x4`], [`f32x8`], [`f32x16`] and [`f64x4`].
-/// The arithmetic operators act lane-wise; comparisons return a [`Real::Mask`] that
-/// [`Real::select`] consumes.
+/// Implemented for `f32`, `f64`, [`F32Fma`], [`f32x4`], [`f32x8`], [`f32x16`] and [`f64x4`],
+/// and sealed through its supertrait [`Bits`] (the bit tricks of [`crate::fast`], kept out of
+/// this list). The arithmetic operators act lane-wise; comparisons return a [`Real::Mask`]
+/// that [`Real::select`] consumes.
 ///
 /// # Examples
 ///
