@@ -1403,6 +1403,7 @@ impl<S: Scalar> Splat for AnyFresnel<S> {
     }
 }
 
+#[deny(clippy::missing_trait_methods)] // forward every hook, defaulted ones too
 impl<R: Real> FresnelTerm<R, 3> for AnyFresnel<R> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; 3] {

@@ -722,6 +722,7 @@ any_masking_from!(
     Implicit
 );
 
+#[deny(clippy::missing_trait_methods)] // forward every hook, defaulted ones too
 impl<R: Real, D: SmithLambda<R> + ProjectedAlpha<R>> Masking<R, D> for AnyMasking {
     #[inline(always)]
     fn g2(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {

@@ -1390,6 +1390,7 @@ impl<S: Scalar> Splat for AnyNdf<S> {
     }
 }
 
+#[deny(clippy::missing_trait_methods)] // forward every hook, defaulted ones too
 impl<R: Real> Ndf<R> for AnyNdf<R> {
     #[inline(always)]
     fn d(&self, wm: Vec3<R>) -> R {
@@ -1402,6 +1403,7 @@ impl<R: Real> Ndf<R> for AnyNdf<R> {
     }
 }
 
+#[deny(clippy::missing_trait_methods)] // forward every hook, defaulted ones too
 impl<R: Real> SmithLambda<R> for AnyNdf<R> {
     #[inline(always)]
     fn lambda(&self, w: Vec3<R>) -> R {
@@ -1429,6 +1431,7 @@ impl<R: Real> SmithLambda<R> for AnyNdf<R> {
     }
 }
 
+#[deny(clippy::missing_trait_methods)] // forward every hook, defaulted ones too
 impl<R: Real> ProjectedAlpha<R> for AnyNdf<R> {
     #[inline(always)]
     fn projected_alpha(&self, w: Vec3<R>) -> R {

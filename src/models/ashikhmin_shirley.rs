@@ -193,3 +193,59 @@ impl<R: Real, const N: usize> SampleBrdf<R, N> for AshikhminShirley<R, N> {
         d + s
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// File description (feature `serde`)
+// ---------------------------------------------------------------------------------------------
+
+/// The file description of [`AshikhminShirley`]: `model = "ashikhmin_shirley"`,
+/// re-exported from [`crate::material`].
+#[cfg(feature = "serde")]
+pub(crate) mod desc {
+    use serde::{Deserialize, Serialize};
+
+    use super::AshikhminShirley;
+    use crate::Scalar;
+    use crate::material::{Material, MaterialError, ModelDesc, Reflectance, Rgb, invalid};
+
+    crate::material::field_fns!(rd, rs, nu, nv);
+
+    /// [`AshikhminShirley`] (Ashikhmin and Shirley 2000): diffuse `rd`, specular
+    /// normal-incidence reflectance `rs` (a colour, a preset or a complex IOR), exponents
+    /// `nu`, `nv ∈ [0, 1e6]` along the tangent and the bitangent (anisotropic when they
+    /// differ).
+    #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "the parameters of `ashikhmin_shirley`")]
+    pub struct AshikhminShirleyDesc {
+        /// Diffuse reflectance.
+        #[serde(deserialize_with = "field::rd")]
+        pub rd: Rgb,
+        /// Specular normal-incidence reflectance.
+        #[serde(deserialize_with = "field::rs")]
+        pub rs: Reflectance,
+        /// Exponent along the tangent, `[0, 1e6]`.
+        #[serde(deserialize_with = "field::nu")]
+        pub nu: f64,
+        /// Exponent along the bitangent, `[0, 1e6]`.
+        #[serde(deserialize_with = "field::nv")]
+        pub nv: f64,
+    }
+
+    impl ModelDesc for AshikhminShirleyDesc {
+        const NAME: &'static str = "ashikhmin_shirley";
+
+        fn is_anisotropic(&self) -> bool {
+            self.nu != self.nv
+        }
+
+        fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+            let inv = invalid(Self::NAME);
+            let rs = Rgb(self.rs.value().map_err(&inv)?).scalars();
+            let (nu, nv) = (S::of(self.nu), S::of(self.nv));
+            Ok(AshikhminShirley::new(self.rd.scalars(), rs, nu, nv)
+                .map_err(inv)?
+                .into())
+        }
+    }
+}

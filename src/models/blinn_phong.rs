@@ -922,3 +922,173 @@ impl<R: Real, const N: usize> CoupledLambert<R, N> {
             }))
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// File description (feature `serde`)
+// ---------------------------------------------------------------------------------------------
+
+/// The file descriptions of [`BlinnPhongClassic`] (`model = "blinn_phong_classic"`) and
+/// [`NormalizedBlinnPhong`] (`model = "normalized_blinn_phong"`), re-exported from
+/// [`crate::material`].
+#[cfg(feature = "serde")]
+pub(crate) mod desc {
+    use serde::{Deserialize, Serialize};
+
+    use super::{BlinnPhongClassic, NormalizedBlinnPhong};
+    use crate::Scalar;
+    use crate::material::{Material, MaterialError, ModelDesc, Reflectance, Rgb, invalid};
+    use crate::normalization::Normalization;
+
+    crate::material::field_fns!(rd, rs, f0, shininess, normalization, denominator, offset);
+
+    /// [`BlinnPhongClassic`], the engine form `Out = R_d (N·L) + R_s F (N·H)^s`.
+    #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "the parameters of `blinn_phong_classic`")]
+    pub struct BlinnPhongClassicDesc {
+        /// Diffuse coefficient (the albedo is `π rd`).
+        #[serde(deserialize_with = "field::rd")]
+        pub rd: Rgb,
+        /// Specular coefficient `R_s ∈ [0, 1]`.
+        #[serde(deserialize_with = "field::rs")]
+        pub rs: f64,
+        /// Schlick's normal-incidence reflectance.
+        #[serde(deserialize_with = "field::f0")]
+        pub f0: Reflectance,
+        /// Exponent `s ≥ 0`.
+        #[serde(deserialize_with = "field::shininess")]
+        pub shininess: f64,
+    }
+
+    impl ModelDesc for BlinnPhongClassicDesc {
+        const NAME: &'static str = "blinn_phong_classic";
+
+        fn is_anisotropic(&self) -> bool {
+            false
+        }
+
+        fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+            let inv = invalid(Self::NAME);
+            let f0 = Rgb(self.f0.value().map_err(&inv)?).scalars();
+            let (rs, shininess) = (S::of(self.rs), S::of(self.shininess));
+            Ok(BlinnPhongClassic::new(self.rd.scalars(), rs, f0, shininess)
+                .map_err(inv)?
+                .into())
+        }
+    }
+
+    /// Which normalization factor a normalized Blinn-Phong uses (see
+    /// [`Normalization`] for the formulas). In TOML: `normalization = "tri_ace_exact"`, or
+    /// `{ tri_ace_fit = { offset = 2.0 } }`.
+    #[derive(Clone, Copy, Debug, PartialEq, Default, Serialize, Deserialize)]
+    #[serde(rename_all = "snake_case")]
+    #[serde(expecting = "a normalization name")]
+    pub enum NormalizationDesc {
+        /// [`Normalization::Unnormalized`].
+        Unnormalized,
+        /// [`Normalization::TriAceExact`].
+        TriAceExact,
+        /// [`Normalization::TriAceFit`] with another offset.
+        TriAceFit {
+            /// The offset `n` of `(s + n)/(8π)`.
+            #[serde(deserialize_with = "field::offset")]
+            offset: f64,
+        },
+        /// [`Normalization::TRI_ACE_2009_FIT`], the seed's `(s + 2.04)/(8π)` (default). In files
+        /// `"tri_ace_2009_fit"` (also accepted: `"tri_ace2009_fit"`, serde's own snake case of the
+        /// variant name, which earlier versions required).
+        #[default]
+        #[serde(rename = "tri_ace_2009_fit", alias = "tri_ace2009_fit")]
+        TriAce2009Fit,
+        /// [`Normalization::TriAce2010Fit`]. In files `"tri_ace_2010_fit"` (also accepted:
+        /// `"tri_ace2010_fit"`).
+        #[serde(rename = "tri_ace_2010_fit", alias = "tri_ace2010_fit")]
+        TriAce2010Fit,
+        /// [`Normalization::BlinnPhongNdf`].
+        BlinnPhongNdf,
+        /// [`Normalization::BlinnPhongCosineExact`].
+        BlinnPhongCosineExact,
+        /// [`Normalization::BlinnPhongRtrApprox`].
+        BlinnPhongRtrApprox,
+        /// [`Normalization::PhongLobe`].
+        PhongLobe,
+        /// [`Normalization::PhongCosine`].
+        PhongCosine,
+    }
+
+    impl NormalizationDesc {
+        /// The crate's [`Normalization`].
+        #[must_use]
+        pub fn normalization(self) -> Normalization {
+            match self {
+                NormalizationDesc::Unnormalized => Normalization::Unnormalized,
+                NormalizationDesc::TriAceExact => Normalization::TriAceExact,
+                NormalizationDesc::TriAceFit { offset } => Normalization::TriAceFit { offset },
+                NormalizationDesc::TriAce2009Fit => Normalization::TRI_ACE_2009_FIT,
+                NormalizationDesc::TriAce2010Fit => Normalization::TriAce2010Fit,
+                NormalizationDesc::BlinnPhongNdf => Normalization::BlinnPhongNdf,
+                NormalizationDesc::BlinnPhongCosineExact => Normalization::BlinnPhongCosineExact,
+                NormalizationDesc::BlinnPhongRtrApprox => Normalization::BlinnPhongRtrApprox,
+                NormalizationDesc::PhongLobe => Normalization::PhongLobe,
+                NormalizationDesc::PhongCosine => Normalization::PhongCosine,
+            }
+        }
+    }
+
+    /// The specular denominator of a normalized Blinn-Phong.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+    #[serde(rename_all = "snake_case")]
+    #[serde(expecting = "a denominator name")]
+    pub enum DenominatorDesc {
+        /// [`CosThetaI`](crate::models::CosThetaI): the seed talk's form (default).
+        #[default]
+        CosThetaI,
+        /// [`MaxCos`](crate::models::MaxCos): tri-Ace 2010's reciprocal form.
+        MaxCos,
+    }
+
+    /// [`NormalizedBlinnPhong`], the seed talk's model.
+    #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "the parameters of `normalized_blinn_phong`")]
+    pub struct NormalizedBlinnPhongDesc {
+        /// Diffuse albedo.
+        #[serde(deserialize_with = "field::rd")]
+        pub rd: Rgb,
+        /// Specular intensity `R_s ∈ [0, 1]`.
+        #[serde(deserialize_with = "field::rs")]
+        pub rs: f64,
+        /// Schlick's normal-incidence reflectance.
+        #[serde(deserialize_with = "field::f0")]
+        pub f0: Reflectance,
+        /// Exponent `s ≥ 0`.
+        #[serde(deserialize_with = "field::shininess")]
+        pub shininess: f64,
+        /// Normalization factor (default `tri_ace_2009_fit`).
+        #[serde(default, deserialize_with = "field::normalization")]
+        pub normalization: NormalizationDesc,
+        /// Specular denominator (default `cos_theta_i`).
+        #[serde(default, deserialize_with = "field::denominator")]
+        pub denominator: DenominatorDesc,
+    }
+
+    impl ModelDesc for NormalizedBlinnPhongDesc {
+        const NAME: &'static str = "normalized_blinn_phong";
+
+        fn is_anisotropic(&self) -> bool {
+            false
+        }
+
+        fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+            let inv = invalid(Self::NAME);
+            let f0 = Rgb(self.f0.value().map_err(&inv)?).scalars();
+            let norm = self.normalization.normalization();
+            let (rd, rs, sh) = (self.rd.scalars(), S::of(self.rs), S::of(self.shininess));
+            let m = NormalizedBlinnPhong::new(rd, rs, f0, sh, norm).map_err(inv)?;
+            Ok(match self.denominator {
+                DenominatorDesc::CosThetaI => m.into(),
+                DenominatorDesc::MaxCos => m.with_denominator::<super::MaxCos>().into(),
+            })
+        }
+    }
+}

@@ -215,3 +215,81 @@ where
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// File description (feature `serde`)
+// ---------------------------------------------------------------------------------------------
+
+/// The file description of [`CookTorrance`]: `model = "cook_torrance"`, re-exported from
+/// [`crate::material`].
+#[cfg(feature = "serde")]
+pub(crate) mod desc {
+    use serde::{Deserialize, Serialize};
+
+    use super::CookTorrance;
+    use crate::Scalar;
+    use crate::masking::AnyMasking;
+    use crate::material::{
+        FresnelDesc, Material, MaterialError, ModelDesc, NdfDesc, alphas, build_fresnel, invalid,
+        iso_alpha,
+    };
+
+    crate::material::field_fns!(ndf, alpha, alpha_x, alpha_y, fresnel, masking);
+
+    /// [`CookTorrance`] with a choice of NDF, Fresnel and masking term.
+    ///
+    /// Roughness: either `alpha` (isotropic) or both `alpha_x` and `alpha_y`, each in
+    /// `[1e-4, 1]`.
+    #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "the parameters of `cook_torrance`")]
+    pub struct CookTorranceDesc {
+        /// The distribution.
+        #[serde(deserialize_with = "field::ndf")]
+        pub ndf: NdfDesc,
+        /// Isotropic slope parameter.
+        #[serde(
+            default,
+            skip_serializing_if = "Option::is_none",
+            deserialize_with = "field::alpha"
+        )]
+        pub alpha: Option<f64>,
+        /// Slope parameter along the tangent.
+        #[serde(
+            default,
+            skip_serializing_if = "Option::is_none",
+            deserialize_with = "field::alpha_x"
+        )]
+        pub alpha_x: Option<f64>,
+        /// Slope parameter along the bitangent.
+        #[serde(
+            default,
+            skip_serializing_if = "Option::is_none",
+            deserialize_with = "field::alpha_y"
+        )]
+        pub alpha_y: Option<f64>,
+        /// The Fresnel term.
+        #[serde(deserialize_with = "field::fresnel")]
+        pub fresnel: FresnelDesc,
+        /// The masking term (default `smith_height_correlated`).
+        #[serde(default, deserialize_with = "field::masking")]
+        pub masking: AnyMasking,
+    }
+
+    impl ModelDesc for CookTorranceDesc {
+        const NAME: &'static str = "cook_torrance";
+
+        fn is_anisotropic(&self) -> bool {
+            self.alpha.is_none() && self.alpha_x.is_some() && self.alpha_x != self.alpha_y
+        }
+
+        fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+            let alpha = alphas(Self::NAME, self.alpha, self.alpha_x, self.alpha_y)?;
+            let isotropic = self.alpha.is_some();
+            let inv = |e| invalid(Self::NAME)(iso_alpha(isotropic, e));
+            let ndf = self.ndf.build(alpha, isotropic).map_err(inv)?;
+            let fresnel = build_fresnel(&self.fresnel).map_err(inv)?;
+            Ok(CookTorrance::new(ndf, fresnel, self.masking).into())
+        }
+    }
+}

@@ -243,3 +243,72 @@ impl<R: Real, const N: usize> SampleBrdf<R, N> for KajiyaKay<R, N> {
         R::pi() * mean(self.kd_over_pi) + mean(self.ks_c)
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// File description (feature `serde`)
+// ---------------------------------------------------------------------------------------------
+
+/// The file description of [`KajiyaKay`]: `model = "kajiya_kay"`, re-exported from
+/// [`crate::material`].
+#[cfg(feature = "serde")]
+pub(crate) mod desc {
+    use serde::{Deserialize, Serialize};
+
+    use super::KajiyaKay;
+    use crate::Scalar;
+    use crate::material::{Material, MaterialError, ModelDesc, Rgb, invalid};
+
+    crate::material::field_fns!(kd, ks, p, tangent, normalized);
+
+    fn default_tangent() -> [f64; 3] {
+        [1.0, 0.0, 0.0]
+    }
+
+    fn default_true() -> bool {
+        true
+    }
+
+    /// [`KajiyaKay`] (Kajiya and Kay 1989): diffuse `kd`, specular `ks`, exponent
+    /// `p ∈ (0, 1e6]`, the fibre direction `tangent` in the local frame (default the
+    /// tangent `[1, 0, 0]`) and `normalized` (default `true`, the energy-bounded variant;
+    /// `false` is the published model). Always anisotropic.
+    #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "the parameters of `kajiya_kay`")]
+    pub struct KajiyaKayDesc {
+        /// Diffuse coefficient.
+        #[serde(deserialize_with = "field::kd")]
+        pub kd: Rgb,
+        /// Specular coefficient.
+        #[serde(deserialize_with = "field::ks")]
+        pub ks: Rgb,
+        /// Exponent, `(0, 1e6]`.
+        #[serde(deserialize_with = "field::p")]
+        pub p: f64,
+        /// Fibre direction in the local frame (default `[1, 0, 0]`, the tangent).
+        #[serde(default = "default_tangent", deserialize_with = "field::tangent")]
+        pub tangent: [f64; 3],
+        /// Energy-bounded variant (default `true`); `false` is the published model.
+        #[serde(default = "default_true", deserialize_with = "field::normalized")]
+        pub normalized: bool,
+    }
+
+    impl ModelDesc for KajiyaKayDesc {
+        const NAME: &'static str = "kajiya_kay";
+
+        fn is_anisotropic(&self) -> bool {
+            true
+        }
+
+        fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+            let t = self.tangent.map(S::of);
+            let (kd, ks, p) = (self.kd.scalars(), self.ks.scalars(), S::of(self.p));
+            let m = if self.normalized {
+                KajiyaKay::normalized(kd, ks, p, t)
+            } else {
+                KajiyaKay::new(kd, ks, p, t)
+            };
+            Ok(m.map_err(invalid(Self::NAME))?.into())
+        }
+    }
+}

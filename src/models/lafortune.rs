@@ -351,3 +351,92 @@ impl<R: Real, const N: usize, const K: usize> SampleBrdf<R, N> for Lafortune<R, 
             .fold(R::pi() * mean(self.rho_d_over_pi), |t, l| t + l.estimate)
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// File description (feature `serde`)
+// ---------------------------------------------------------------------------------------------
+
+/// The file description of [`Lafortune`]: `model = "lafortune"`, re-exported from
+/// [`crate::material`].
+#[cfg(feature = "serde")]
+pub(crate) mod desc {
+    use alloc::vec::Vec;
+
+    use serde::{Deserialize, Serialize};
+
+    use super::{Lafortune, LafortuneLobe};
+    use crate::Scalar;
+    use crate::material::{Material, MaterialError, ModelDesc, Rgb, invalid};
+
+    crate::material::field_fns!(cx, cy, cz, n, rho, rho_d, lobes);
+
+    /// One lobe of a [`LafortuneDesc`]: `ρ (Cx x_i x_o + Cy y_i y_o + Cz z_i z_o)^n`.
+    #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "a lobe: a table with `cx`, `cy`, `cz`, `n` and `rho`")]
+    pub struct LobeDesc {
+        /// Weight of `x_i x_o`.
+        #[serde(deserialize_with = "field::cx")]
+        pub cx: f64,
+        /// Weight of `y_i y_o`.
+        #[serde(deserialize_with = "field::cy")]
+        pub cy: f64,
+        /// Weight of `z_i z_o`.
+        #[serde(deserialize_with = "field::cz")]
+        pub cz: f64,
+        /// Exponent, `≥ 0`.
+        #[serde(deserialize_with = "field::n")]
+        pub n: f64,
+        /// Lobe scale per channel, `≥ 0`.
+        #[serde(deserialize_with = "field::rho")]
+        pub rho: Rgb,
+    }
+
+    /// [`Lafortune`] with one to three lobes.
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "the parameters of `lafortune`")]
+    pub struct LafortuneDesc {
+        /// Lambertian part.
+        #[serde(deserialize_with = "field::rho_d")]
+        pub rho_d: Rgb,
+        /// The lobes (1 to 3).
+        #[serde(deserialize_with = "field::lobes")]
+        pub lobes: Vec<LobeDesc>,
+    }
+
+    impl ModelDesc for LafortuneDesc {
+        const NAME: &'static str = "lafortune";
+
+        fn is_anisotropic(&self) -> bool {
+            self.lobes.iter().any(|l| l.cx != l.cy)
+        }
+
+        fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+            let inv = invalid(Self::NAME);
+            let s = S::of;
+            let lobe = |l: &LobeDesc| LafortuneLobe {
+                cx: s(l.cx),
+                cy: s(l.cy),
+                cz: s(l.cz),
+                n: s(l.n),
+                rho: l.rho.scalars(),
+            };
+            let rd = self.rho_d.scalars();
+            Ok(match self.lobes.as_slice() {
+                [a] => Lafortune::new(rd, [lobe(a)]).map_err(inv)?.into(),
+                [a, b] => Lafortune::new(rd, [lobe(a), lobe(b)]).map_err(inv)?.into(),
+                [a, b, c] => Lafortune::new(rd, [lobe(a), lobe(b), lobe(c)])
+                    .map_err(inv)?
+                    .into(),
+                _ => {
+                    return Err(MaterialError::Inconsistent {
+                        model: Self::NAME,
+                        field: "lobes",
+                        reason: "give 1 to 3 lobes",
+                    });
+                }
+            })
+        }
+    }
+}

@@ -79,3 +79,44 @@ impl<R: Real, const N: usize> Lambert<R, N> {
         R::pi() * crate::sampling::lobes::mean(self.albedo_over_pi)
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// File description (feature `serde`)
+// ---------------------------------------------------------------------------------------------
+
+/// The file description of [`Lambert`]: `model = "lambert"`, re-exported from
+/// [`crate::material`].
+#[cfg(feature = "serde")]
+pub(crate) mod desc {
+    use serde::{Deserialize, Serialize};
+
+    use super::Lambert;
+    use crate::Scalar;
+    use crate::material::{Material, MaterialError, ModelDesc, Rgb, invalid};
+
+    crate::material::field_fns!(albedo);
+
+    /// [`Lambert`], `f = albedo/π`: `albedo ∈ [0, 1]` per channel. In TOML:
+    /// `model = "lambert"`, `albedo = [0.8, 0.5, 0.2]`.
+    #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "the parameters of `lambert`")]
+    pub struct LambertDesc {
+        /// Diffuse albedo.
+        #[serde(deserialize_with = "field::albedo")]
+        pub albedo: Rgb,
+    }
+
+    impl ModelDesc for LambertDesc {
+        const NAME: &'static str = "lambert";
+
+        fn is_anisotropic(&self) -> bool {
+            false
+        }
+
+        fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+            let m = Lambert::new(self.albedo.scalars()).map_err(invalid(Self::NAME))?;
+            Ok(m.into())
+        }
+    }
+}

@@ -324,3 +324,99 @@ where
         s + d
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// File description (feature `serde`)
+// ---------------------------------------------------------------------------------------------
+
+/// The file descriptions of the compositions: [`Sum`] of any number of terms
+/// (`model = "sum"`) and [`Layered`] (`model = "layered"`), re-exported from
+/// [`crate::material`]. They hold other descriptions, as their runtime variants
+/// (`Material::Sum`, `Material::Layered`) hold other materials.
+#[cfg(feature = "serde")]
+pub(crate) mod desc {
+    use alloc::boxed::Box;
+    use alloc::vec::Vec;
+
+    use serde::{Deserialize, Serialize};
+
+    use super::Layered;
+    use crate::Scalar;
+    use crate::material::{
+        FresnelDesc, Material, MaterialDesc, MaterialError, ModelDesc, Parts, build_fresnel,
+        invalid,
+    };
+
+    crate::material::field_fns!(terms, base, coat, fresnel);
+
+    /// [`crate::models::Sum`] of any number of terms (at least one).
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "the parameters of `sum`")]
+    pub struct SumDesc {
+        /// The summands.
+        #[serde(deserialize_with = "field::terms")]
+        pub terms: Vec<MaterialDesc>,
+    }
+
+    /// [`Layered`]: `coat + (1 − F(cos θi))(1 − F(cos θo)) · base`.
+    #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "the parameters of `layered`")]
+    pub struct LayeredDesc {
+        /// The base, seen through the coat.
+        #[serde(deserialize_with = "field::base")]
+        pub base: Box<MaterialDesc>,
+        /// The coat's own reflection.
+        #[serde(deserialize_with = "field::coat")]
+        pub coat: Box<MaterialDesc>,
+        /// The coat's Fresnel term.
+        #[serde(deserialize_with = "field::fresnel")]
+        pub fresnel: FresnelDesc,
+    }
+
+    impl ModelDesc for SumDesc {
+        const NAME: &'static str = "sum";
+
+        fn is_anisotropic(&self) -> bool {
+            false
+        }
+
+        fn parts(&self) -> Option<Parts<'_>> {
+            Some(Parts::slice(&self.terms))
+        }
+
+        fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+            if self.terms.is_empty() {
+                return Err(MaterialError::Inconsistent {
+                    model: Self::NAME,
+                    field: "terms",
+                    reason: "give at least one term",
+                });
+            }
+            let terms = self.terms.iter().map(MaterialDesc::build_checked);
+            Ok(Material::Sum(terms.collect::<Result<_, _>>()?))
+        }
+    }
+
+    impl ModelDesc for LayeredDesc {
+        const NAME: &'static str = "layered";
+
+        fn is_anisotropic(&self) -> bool {
+            false
+        }
+
+        fn parts(&self) -> Option<Parts<'_>> {
+            Some(Parts::pair(&self.base, &self.coat))
+        }
+
+        fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+            let base = self.base.build_checked()?;
+            let coat = self.coat.build_checked()?;
+            let fresnel = build_fresnel(&self.fresnel).map_err(invalid(Self::NAME))?;
+            Ok(Material::Layered(Box::new(Layered::new(
+                base, coat, fresnel,
+            ))))
+        }
+    }
+}

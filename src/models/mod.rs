@@ -41,16 +41,16 @@
 use crate::{Real, Vec3};
 
 mod aliases;
-mod ashikhmin_shirley;
-mod blinn_phong;
-mod cook_torrance;
-mod kajiya_kay;
-mod lafortune;
-mod lambert;
-mod layered;
-mod oren_nayar;
-mod shirley_diffuse;
-mod ward;
+pub(crate) mod ashikhmin_shirley;
+pub(crate) mod blinn_phong;
+pub(crate) mod cook_torrance;
+pub(crate) mod kajiya_kay;
+pub(crate) mod lafortune;
+pub(crate) mod lambert;
+pub(crate) mod layered;
+pub(crate) mod oren_nayar;
+pub(crate) mod shirley_diffuse;
+pub(crate) mod ward;
 
 pub use crate::normalization::Normalization;
 pub use aliases::{

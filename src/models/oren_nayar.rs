@@ -210,3 +210,48 @@ impl<R: Real, const N: usize> OrenNayarFujii<R, N> {
         R::pi() * crate::sampling::lobes::mean(self.a)
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// File description (feature `serde`)
+// ---------------------------------------------------------------------------------------------
+
+/// The file description of [`OrenNayar`]: `model = "oren_nayar"`, re-exported from
+/// [`crate::material`].
+#[cfg(feature = "serde")]
+pub(crate) mod desc {
+    use serde::{Deserialize, Serialize};
+
+    use super::OrenNayar;
+    use crate::Scalar;
+    use crate::material::{Material, MaterialError, ModelDesc, Rgb, invalid};
+
+    crate::material::field_fns!(rho, sigma);
+
+    /// [`OrenNayar`] (qualitative model, Oren and Nayar 1994): albedo `rho ∈ [0, 1]` per
+    /// channel and the RMS slope angle `sigma ≥ 0` in radians.
+    #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "the parameters of `oren_nayar`")]
+    pub struct OrenNayarDesc {
+        /// Albedo.
+        #[serde(deserialize_with = "field::rho")]
+        pub rho: Rgb,
+        /// RMS slope angle in radians, `≥ 0`.
+        #[serde(deserialize_with = "field::sigma")]
+        pub sigma: f64,
+    }
+
+    impl ModelDesc for OrenNayarDesc {
+        const NAME: &'static str = "oren_nayar";
+
+        fn is_anisotropic(&self) -> bool {
+            false
+        }
+
+        fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+            let m = OrenNayar::new(self.rho.scalars(), S::of(self.sigma))
+                .map_err(invalid(Self::NAME))?;
+            Ok(m.into())
+        }
+    }
+}

@@ -107,3 +107,51 @@ impl<R: Real, const N: usize> ShirleyDiffuse<R, N> {
         R::from_f64(20.0 * core::f64::consts::PI / 21.0) * crate::sampling::lobes::mean(self.k)
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// File description (feature `serde`)
+// ---------------------------------------------------------------------------------------------
+
+/// The file description of [`ShirleyDiffuse`]: `model = "shirley_diffuse"`, re-exported
+/// from [`crate::material`].
+#[cfg(feature = "serde")]
+pub(crate) mod desc {
+    use serde::{Deserialize, Serialize};
+
+    use super::ShirleyDiffuse;
+    use crate::Scalar;
+    use crate::material::{Material, MaterialError, ModelDesc, Reflectance, Rgb, invalid};
+
+    crate::material::field_fns!(rho_d, r0);
+
+    /// [`ShirleyDiffuse`], the Fresnel-coupled diffuse of Shirley et al. 1997: the
+    /// substrate's `rho_d ∈ [0, 1]` and the coat's normal-incidence reflectance `r0` (a
+    /// colour, a preset or a complex IOR).
+    #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "the parameters of `shirley_diffuse`")]
+    pub struct ShirleyDiffuseDesc {
+        /// Diffuse reflectance of the substrate.
+        #[serde(deserialize_with = "field::rho_d")]
+        pub rho_d: Rgb,
+        /// Normal-incidence reflectance of the coat.
+        #[serde(deserialize_with = "field::r0")]
+        pub r0: Reflectance,
+    }
+
+    impl ModelDesc for ShirleyDiffuseDesc {
+        const NAME: &'static str = "shirley_diffuse";
+
+        fn is_anisotropic(&self) -> bool {
+            false
+        }
+
+        fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+            let inv = invalid(Self::NAME);
+            let r0 = Rgb(self.r0.value().map_err(&inv)?).scalars();
+            Ok(ShirleyDiffuse::new(self.rho_d.scalars(), r0)
+                .map_err(inv)?
+                .into())
+        }
+    }
+}

@@ -654,6 +654,7 @@ default_strategy!(AshikhminShirley => FullDistribution);
 
 /// Forwards to the wrapped distribution's default strategy (one branch per call on the
 /// variant, as for evaluation).
+#[deny(clippy::missing_trait_methods)] // forward every hook, defaulted ones too
 impl<R: Real> SampleNdf<R> for AnyNdf<R> {
     #[inline(always)]
     fn sample_wm(&self, wo: Vec3<R>, u: [R; 2]) -> Vec3<R> {
