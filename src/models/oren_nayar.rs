@@ -215,13 +215,13 @@ impl<R: Real, const N: usize> OrenNayarFujii<R, N> {
 // File description (feature `serde`)
 // ---------------------------------------------------------------------------------------------
 
-/// The file description of [`OrenNayar`]: `model = "oren_nayar"`, re-exported from
-/// [`crate::material`].
+/// The file descriptions of [`OrenNayar`] (`model = "oren_nayar"`) and [`OrenNayarFujii`]
+/// (`model = "oren_nayar_fujii"`), re-exported from [`crate::material`].
 #[cfg(feature = "serde")]
 pub(crate) mod desc {
     use serde::{Deserialize, Serialize};
 
-    use super::OrenNayar;
+    use super::{OrenNayar, OrenNayarFujii};
     use crate::Scalar;
     use crate::material::{Material, MaterialError, ModelDesc, Rgb, invalid};
 
@@ -250,6 +250,35 @@ pub(crate) mod desc {
 
         fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
             let m = OrenNayar::new(self.rho.scalars(), S::of(self.sigma))
+                .map_err(invalid(Self::NAME))?;
+            Ok(m.into())
+        }
+    }
+
+    /// [`OrenNayarFujii`] (Fujii 2013, the improved Oren-Nayar of `OpenPBR`): albedo
+    /// `rho ∈ [0, 1]` per channel and roughness `sigma ∈ [0, 1]`. In TOML:
+    /// `model = "oren_nayar_fujii"`, `rho = 0.8`, `sigma = 0.5`.
+    #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[serde(expecting = "the parameters of `oren_nayar_fujii`")]
+    pub struct OrenNayarFujiiDesc {
+        /// Albedo.
+        #[serde(deserialize_with = "field::rho")]
+        pub rho: Rgb,
+        /// Roughness, `[0, 1]`.
+        #[serde(deserialize_with = "field::sigma")]
+        pub sigma: f64,
+    }
+
+    impl ModelDesc for OrenNayarFujiiDesc {
+        const NAME: &'static str = "oren_nayar_fujii";
+
+        fn is_anisotropic(&self) -> bool {
+            false
+        }
+
+        fn build<S: Scalar>(&self) -> Result<Material<S>, MaterialError> {
+            let m = OrenNayarFujii::new(self.rho.scalars(), S::of(self.sigma))
                 .map_err(invalid(Self::NAME))?;
             Ok(m.into())
         }
