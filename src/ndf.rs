@@ -1368,6 +1368,7 @@ macro_rules! on_any_ndf {
         }
     };
 }
+pub(crate) use on_any_ndf;
 
 /// `From` each wrapped distribution.
 macro_rules! any_ndf_from {

@@ -658,27 +658,15 @@ default_strategy!(AshikhminShirley => FullDistribution);
 impl<R: Real> SampleNdf<R> for AnyNdf<R> {
     #[inline(always)]
     fn sample_wm(&self, wo: Vec3<R>, u: [R; 2]) -> Vec3<R> {
-        match self {
-            AnyNdf::Ggx(n) => n.sample_wm(wo, u),
-            AnyNdf::GgxIsotropic(n) => n.sample_wm(wo, u),
-            AnyNdf::Beckmann(n) => n.sample_wm(wo, u),
-        }
+        crate::ndf::on_any_ndf!(self, n => n.sample_wm(wo, u))
     }
     #[inline(always)]
     fn pdf_wm(&self, wo: Vec3<R>, wm: Vec3<R>) -> R {
-        match self {
-            AnyNdf::Ggx(n) => n.pdf_wm(wo, wm),
-            AnyNdf::GgxIsotropic(n) => n.pdf_wm(wo, wm),
-            AnyNdf::Beckmann(n) => n.pdf_wm(wo, wm),
-        }
+        crate::ndf::on_any_ndf!(self, n => n.pdf_wm(wo, wm))
     }
     #[inline(always)]
     fn weight_scale(&self, wo: Vec3<R>) -> Option<R> {
-        match self {
-            AnyNdf::Ggx(n) => n.weight_scale(wo),
-            AnyNdf::GgxIsotropic(n) => n.weight_scale(wo),
-            AnyNdf::Beckmann(n) => n.weight_scale(wo),
-        }
+        crate::ndf::on_any_ndf!(self, n => n.weight_scale(wo))
     }
 }
 
