@@ -27,6 +27,10 @@
 //! | [`KajiyaKay`] | no (diffuse depends on wi only) | only the normalized variant |
 //! | [`Sum`], [`Layered`] | if both parts are | under a stated condition |
 //!
+//! With the `serde` feature each model's file also holds its file description (module
+//! `desc`, re-exported as `brdf::material::LambertDesc`, …), listed once in the
+//! dispatcher of [`crate::material`].
+//!
 //! The common microfacet compositions have names: [`GgxSmith`], [`GgxSmithSchlick`],
 //! [`GgxSmithConductor`], [`GgxSmithDielectric`], [`AnisoGgxSmith`], [`BeckmannSmith`].
 //!
