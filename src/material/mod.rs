@@ -66,7 +66,9 @@
 //! # Format
 //!
 //! The key `model` selects the model; the other keys are the parameters of the model's
-//! constructor, with the same names (see each `*Desc` type). Colours (`Rgb`) are a number
+//! constructor, with the same names (see each `*Desc` type: it is defined beside its model,
+//! in `src/models/<model>.rs`, and listed once in this module's dispatcher, `models!`; see
+//! ARCHITECTURE.md, "Runtime materials and file descriptions"). Colours (`Rgb`) are a number
 //! (grey) or an array of three linear values. A `Reflectance` (normal-incidence Fresnel
 //! `f0`, specular colour) is a colour, or `{ preset = "gold" }`, or a complex IOR
 //! `{ eta = …, k = … }`. In TOML (`docs/materials/` has more):
