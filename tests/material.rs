@@ -120,7 +120,7 @@ fn ndf_hooks<R: Real, N: SmithLambda<R> + ProjectedAlpha<R> + SampleNdf<R>>(
         (wi.y * half + half).min(R::from_f64(0.999_999)),
     ];
     let s = n.sample_wm(wo, u);
-    let scale = n.weight_scale(wo).unwrap_or(-R::one());
+    let scale = n.weight_scale(wo, s).unwrap_or(-R::one());
     [
         s.x,
         s.y,
