@@ -371,3 +371,25 @@ fn atan(x: f64) -> f64 {
     let a = off + sum;
     if flip { FRAC_PI_2 - a } else { a }
 }
+
+/// `F_avg` of Hoffman's F82-tint Fresnel ([`crate::fresnel::f82_tint_with_b`]) in closed
+/// form, from its `F0` and correction coefficient `b`:
+///
+/// ```text
+/// F(μ)  = F0 + (1 − F0)(1 − μ)⁵ − b μ (1 − μ)⁶
+/// F_avg = 2 ∫_0^1 F(μ) μ dμ = (20 F0 + 1)/21 − 2 b B(3, 7) = (20 F0 + 1)/21 − b/126
+/// ```
+///
+/// (`B(3, 7) = 2! 6!/9! = 1/252`.) Exact for the curve as written; the crate's term clamps
+/// it to `[0, 1]`, which changes nothing unless the correction is strong enough to push the
+/// curve outside (large `b`, Open PBR issue #256) — then the quadrature
+/// [`fresnel_average`] of the clamped term is the exact one. Domain `F0 ∈ [0, 1]`, `b`
+/// finite.
+///
+/// References: N. Hoffman, "Fresnel Equations Considered Harmful", 2019; A. Kutz et al.,
+/// "Novel aspects of the Adobe Standard Material", 2021; Kulla & Conty 2017 (`F_avg`).
+#[inline(always)]
+#[must_use]
+pub fn f82_average<R: Real>(f0: R, b: R) -> R {
+    schlick_average(f0) - b * R::from_f64(1.0 / 126.0)
+}
