@@ -1,0 +1,760 @@
+//! Multiple-scattering compensation of microfacet reflection: the energy a single-scattering
+//! Cook-Torrance lobe loses to inter-reflections between microfacets, given back by a
+//! wrapper model.
+//!
+//! * [`KullaConty`] (Kulla & Conty 2017): adds the reciprocal lobe
+//!   `F_ms (1 − E(μi))(1 − E(μo)) / (π (1 − E_avg))`, coloured by the average Fresnel.
+//! * [`Turquin`] (Turquin 2019): scales the lobe by `1 + F0 (1 − E(μo))/E(μo)`; cheaper,
+//!   not reciprocal.
+//!
+//! Both need the directional albedo `E(μ)` of the wrapped lobe with `F = 1` at every
+//! evaluation. [`AlbedoFit`] represents it, for the model's `α`, by a short Chebyshev series
+//! in a warped cosine, fitted at construction to [`energy::directional_albedo`] and evaluated
+//! branch-free on lanes (one division and a Clenshaw recurrence).
+//!
+//! # Scope
+//!
+//! The wrapped model is a [`CookTorrance`] with the height-correlated Smith term
+//! ([`SmithHeightCorrelated`], the one [`energy::directional_albedo`] integrates) and an
+//! isotropic GGX or Beckmann distribution ([`AlbedoNdf`]; an anisotropic [`Ggx`] is
+//! rejected with a typed error). The Fresnel term gives its average `F_avg` through
+//! [`FresnelAverage`]: closed forms for [`Schlick`] and [`F82Tint`], exact quadrature for the
+//! dielectric and the complex-IOR [`Conductor`] (per channel).
+//!
+//! References: C. Kulla, A. Conty, "Revisiting Physically Based Shading at Imageworks",
+//! SIGGRAPH 2017 course *Physically Based Shading in Theory and Practice*; E. Turquin,
+//! "Practical multiple scattering compensation for microfacet models", Industrial Light &
+//! Magic technical report, 2019; E. Heitz, J. Hanika, E. d'Eon, C. Dachsbacher,
+//! "Multiple-Scattering Microfacet BSDFs with the Smith Model", ACM TOG 35(4), 2016 (the
+//! reference the tests compare with).
+
+use super::{Brdf, Energy, Kinks, Properties, Reciprocity, masked, safe_dirs};
+use crate::energy::{self, Distribution};
+use crate::fresnel::{AnyFresnel, Conductor, Dielectric, F82Tint, FresnelTerm, NoFresnel, Schlick};
+use crate::masking::SmithHeightCorrelated;
+use crate::models::CookTorrance;
+use crate::ndf::{Beckmann, Ggx, GgxIsotropic};
+use crate::real::{Splat, splat_array, splat_scalar};
+use crate::sampling::lobes::{first_probability, mean, pdf_pair, sample_pair};
+use crate::sampling::{Sample, SampleBrdf, pdf_cosine};
+use crate::{Error, Real, Scalar, Vec3};
+
+/// Terms of the Chebyshev series of [`AlbedoFit`] (and nodes of its fit).
+pub const FIT_TERMS: usize = 20;
+
+// ---------------------------------------------------------------------------------------------
+// The directional albedo E(μ) of one roughness, as a short series
+// ---------------------------------------------------------------------------------------------
+
+/// The directional albedo `E(μ)` (`F = 1`) of an isotropic GGX or Beckmann lobe with
+/// height-correlated Smith masking, for one `α`, as a Chebyshev series in a warped cosine:
+///
+/// ```text
+/// t(μ) = ((1 + 2α) μ − α) / (μ + α)          maps μ ∈ [0, 1] onto t ∈ [−1, 1]
+/// E(μ) ≈ clamp( Σ_{k<K} c_k T_k(t(μ)), 0, 1 ),    K = FIT_TERMS
+/// ```
+///
+/// **Why this warp.** For small `α` the albedo depends on `μ` mainly through `μ/α` (the
+/// Smith `Λ` is a function of `cot θ / α`): it is 1 except in a grazing band of width `~α`.
+/// `t` spreads that band over the whole interval (`μ = α` is `t ≈ 0`), so one short series
+/// serves every `α` in `[1e-4, 1]`; for `α = 1` the warp is mild (`t = (3μ − 1)/(μ + 1)`).
+///
+/// **Fit.** `c_k` interpolate [`energy::directional_albedo`] at the `K` Chebyshev-Gauss nodes
+/// `t_j = cos(π (j + ½)/K)` (discrete orthogonality: `c_k = (2/K) Σ_j E(μ(t_j)) T_k(t_j)`,
+/// `c_0` halved). The error against a direct `directional_albedo` is measured in
+/// `tests/multiscatter.rs` (stated there and in the crate's CHANGELOG).
+///
+/// **Evaluation.** One division (the warp) and `K − 1` steps of Clenshaw's recurrence
+/// `b_k = c_k + 2t b_{k+1} − b_{k+2}` (stable in `f32`), branch-free: the same body for
+/// `f32`, `f64` and SIMD lanes. Domain: `μ ∈ [0, 1]` (clamped).
+///
+/// **Cost of construction.** `K` calls of [`energy::directional_albedo`] (each 4096 to
+/// ~45 000 integrand evaluations, more at grazing nodes); see `new` for the measured time.
+///
+/// References: Kulla & Conty 2017 (the role of `E` and `E_avg`); L. N. Trefethen,
+/// *Approximation Theory and Approximation Practice*, SIAM 2013 (Chebyshev interpolation,
+/// Clenshaw's recurrence).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AlbedoFit<R> {
+    /// `c_0 … c_{K−1}` (`c_0` already halved).
+    coeffs: [R; FIT_TERMS],
+    /// `1 + 2α`.
+    p: R,
+    /// `α`.
+    q: R,
+    /// `E_avg = 2 ∫ E(μ) μ dμ` of the series.
+    average: f64,
+    /// The distribution and `α` the series was fitted for.
+    distribution: Distribution,
+    alpha: f64,
+}
+
+impl<S: Scalar> AlbedoFit<S> {
+    /// Fits `E(μ)` of `distribution` with slope parameter `alpha ∈ [1e-4, 1]`.
+    ///
+    /// Measured cost (release build, AMD EPYC Zen 4, one core): see the CHANGELOG entry of
+    /// issue 13 and `tests/multiscatter.rs` (`construction_cost`).
+    ///
+    /// # Errors
+    /// As [`energy::directional_albedo`] for `alpha`.
+    pub fn new(distribution: Distribution, alpha: f64) -> Result<Self, Error> {
+        let mut values = [0.0; FIT_TERMS];
+        for (j, v) in values.iter_mut().enumerate() {
+            *v = energy::directional_albedo(distribution, alpha, mu_of_t(alpha, node(j)))?;
+        }
+        let mut coeffs = [0.0; FIT_TERMS];
+        let k = FIT_TERMS as f64;
+        for (i, c) in coeffs.iter_mut().enumerate() {
+            let mut s = 0.0;
+            for (j, v) in values.iter().enumerate() {
+                let angle = core::f64::consts::PI * i as f64 * (j as f64 + 0.5) / k;
+                s += v * Real::cos(angle);
+            }
+            *c = 2.0 * s / k;
+        }
+        coeffs[0] *= 0.5;
+        let average = series_average(&coeffs, alpha);
+        Ok(Self {
+            coeffs: coeffs.map(S::of),
+            p: S::of(1.0 + 2.0 * alpha),
+            q: S::of(alpha),
+            average,
+            distribution,
+            alpha,
+        })
+    }
+}
+
+impl<R: Real> AlbedoFit<R> {
+    /// `E(μ)` of the series, in `[0, 1]`, for `mu ∈ [0, 1]` (clamped). Branch-free.
+    #[inline(always)]
+    pub fn eval(&self, mu: R) -> R {
+        let mu = mu.saturate();
+        let t = self.p.mul_add(mu, -self.q) / (mu + self.q);
+        let t2 = t + t;
+        let (mut b1, mut b2) = (R::zero(), R::zero());
+        for k in (1..FIT_TERMS).rev() {
+            let b0 = t2.mul_add(b1, self.coeffs[k] - b2);
+            b2 = b1;
+            b1 = b0;
+        }
+        t.mul_add(b1, self.coeffs[0] - b2).saturate()
+    }
+
+    /// `E_avg = 2 ∫_0^1 E(μ) μ dμ` of the series (as `1 − 2∫(1 − E) μ dμ`, by 4 × 16-point
+    /// Gauss-Legendre in `t`, where that integrand is smooth), in `[0, 1]`.
+    #[must_use]
+    pub fn average(&self) -> f64 {
+        self.average
+    }
+
+    /// The distribution the series was fitted for.
+    #[must_use]
+    pub fn distribution(&self) -> Distribution {
+        self.distribution
+    }
+
+    /// The slope parameter `α` the series was fitted for.
+    #[must_use]
+    pub fn alpha(&self) -> f64 {
+        self.alpha
+    }
+}
+
+impl<S: Scalar> Splat for AlbedoFit<S> {
+    type On<L: Real> = AlbedoFit<L>;
+    #[inline]
+    fn splat<L: Real>(&self) -> AlbedoFit<L> {
+        AlbedoFit {
+            coeffs: splat_array(&self.coeffs),
+            p: splat_scalar(self.p),
+            q: splat_scalar(self.q),
+            average: self.average,
+            distribution: self.distribution,
+            alpha: self.alpha,
+        }
+    }
+}
+
+/// The `j`-th Chebyshev-Gauss node `cos(π (j + ½)/K)`.
+fn node(j: usize) -> f64 {
+    Real::cos(core::f64::consts::PI * (j as f64 + 0.5) / FIT_TERMS as f64)
+}
+
+/// The inverse of the warp: `μ(t) = α (1 + t) / (1 + 2α − t)`.
+fn mu_of_t(alpha: f64, t: f64) -> f64 {
+    (alpha * (1.0 + t) / (1.0 + 2.0 * alpha - t)).clamp(0.0, 1.0)
+}
+
+/// `E_avg = 1 − 2 ∫_0^1 (1 − E(μ)) μ dμ` of the series, integrated in `t`
+/// (`dμ/dt = 2α(1 + α)/(1 + 2α − t)²`). The loss `1 − E` is written out because the
+/// Jacobian grows like `1/α` towards `t = 1` (normal view), where `1 − E` vanishes: the
+/// product is smooth, `E μ dμ/dt` is not.
+fn series_average(coeffs: &[f64; FIT_TERMS], alpha: f64) -> f64 {
+    let (x, w) = energy::gauss_legendre::<16>();
+    let mut sum = 0.0;
+    for panel in 0..4 {
+        for (&xk, &wk) in x.iter().zip(&w) {
+            let t = -1.0 + 0.5 * (f64::from(panel) + xk);
+            let mu = mu_of_t(alpha, t);
+            let jac =
+                2.0 * alpha * (1.0 + alpha) / ((1.0 + 2.0 * alpha - t) * (1.0 + 2.0 * alpha - t));
+            sum += 0.5 * wk * (1.0 - chebyshev(coeffs, t).clamp(0.0, 1.0)) * mu * jac;
+        }
+    }
+    (1.0 - 2.0 * sum).clamp(0.0, 1.0)
+}
+
+/// `Σ c_k T_k(t)` in `f64` (Clenshaw).
+fn chebyshev(coeffs: &[f64; FIT_TERMS], t: f64) -> f64 {
+    let (mut b1, mut b2) = (0.0, 0.0);
+    for k in (1..FIT_TERMS).rev() {
+        let b0 = 2.0 * t * b1 + coeffs[k] - b2;
+        b2 = b1;
+        b1 = b0;
+    }
+    t * b1 + coeffs[0] - b2
+}
+
+// ---------------------------------------------------------------------------------------------
+// What the wrapped model must tell: its distribution and α, its Fresnel averages
+// ---------------------------------------------------------------------------------------------
+
+/// An NDF whose albedo [`energy::directional_albedo`] tabulates: isotropic GGX or Beckmann,
+/// with its `α`.
+pub trait AlbedoNdf {
+    /// `(distribution, α)`.
+    ///
+    /// # Errors
+    /// [`Error::OutOfDomain`] (`param` `"alpha_y"`) for an anisotropic distribution: the
+    /// albedo tables are isotropic.
+    fn albedo_ndf(&self) -> Result<(Distribution, f64), Error>;
+}
+
+/// The domain message of an anisotropic NDF given to a compensation.
+const ISOTROPIC: &str = "alpha_y = alpha_x (multiple-scattering compensation is isotropic)";
+
+fn isotropic(distribution: Distribution, ax: f64, ay: f64) -> Result<(Distribution, f64), Error> {
+    if ax == ay {
+        Ok((distribution, ax))
+    } else {
+        Err(Error::OutOfDomain {
+            param: "alpha_y",
+            value: ay,
+            domain: ISOTROPIC,
+        })
+    }
+}
+
+impl<S: Scalar> AlbedoNdf for Ggx<S> {
+    /// GGX with `αx = αy`; anisotropic is an error.
+    fn albedo_ndf(&self) -> Result<(Distribution, f64), Error> {
+        isotropic(
+            Distribution::Ggx,
+            self.alpha_x().into(),
+            self.alpha_y().into(),
+        )
+    }
+}
+
+impl<S: Scalar> AlbedoNdf for GgxIsotropic<S> {
+    /// GGX with its `α`.
+    fn albedo_ndf(&self) -> Result<(Distribution, f64), Error> {
+        Ok((Distribution::Ggx, self.alpha().into()))
+    }
+}
+
+impl<S: Scalar> AlbedoNdf for Beckmann<S> {
+    /// Beckmann with `αx = αy`; anisotropic is an error.
+    fn albedo_ndf(&self) -> Result<(Distribution, f64), Error> {
+        isotropic(
+            Distribution::Beckmann,
+            self.alpha_x().into(),
+            self.alpha_y().into(),
+        )
+    }
+}
+
+/// A Fresnel term's cosine-weighted hemispherical average and normal-incidence reflectance,
+/// per channel, in `f64`:
+///
+/// ```text
+/// F_avg = 2 ∫_0^1 F(μ) μ dμ,        F0 = F(1)
+/// ```
+///
+/// Closed forms where they exist ([`Schlick`]: `F0 + (F90 − F0)/21`; [`F82Tint`]:
+/// [`energy::f82_average`]); the others by [`energy::fresnel_average`] on the term splatted
+/// to `f64` (exact to ~1e-12 for conductors).
+///
+/// Reference: Kulla & Conty 2017 (`F_avg`).
+pub trait FresnelAverage<const N: usize> {
+    /// `F_avg` per channel.
+    fn average(&self) -> [f64; N];
+    /// `F(1)` per channel.
+    fn normal_reflectance(&self) -> [f64; N];
+}
+
+/// `F_avg` and `F(1)` by quadrature, on the term splatted to `f64`.
+fn by_quadrature<F, const N: usize>(f: &F) -> ([f64; N], [f64; N])
+where
+    F: Splat,
+    F::On<f64>: FresnelTerm<f64, N>,
+{
+    let f64s = f.splat::<f64>();
+    (energy::fresnel_average(&f64s), f64s.eval(1.0))
+}
+
+impl<S: Scalar, const N: usize> FresnelAverage<N> for Schlick<S, N> {
+    /// `F_avg = F0 + (F90 − F0) · 2 B(2, 6) = F0 + (F90 − F0)/21` (with `F90 = 1`:
+    /// [`energy::schlick_average`]).
+    fn average(&self) -> [f64; N] {
+        let (f0, f90) = (self.f0(), self.f90());
+        core::array::from_fn(|c| {
+            let (a, b): (f64, f64) = (f0[c].into(), f90[c].into());
+            a + (b - a) / 21.0
+        })
+    }
+    fn normal_reflectance(&self) -> [f64; N] {
+        self.f0().map(Into::into)
+    }
+}
+
+impl<S: Scalar, const N: usize> FresnelAverage<N> for F82Tint<S, N> {
+    /// [`energy::f82_average`] per channel (exact while the F82 curve needs no clamping,
+    /// see there).
+    fn average(&self) -> [f64; N] {
+        let (f0, b) = (self.f0(), self.b());
+        core::array::from_fn(|c| energy::f82_average(f0[c].into(), b[c].into()))
+    }
+    fn normal_reflectance(&self) -> [f64; N] {
+        self.f0().map(Into::into)
+    }
+}
+
+impl<S: Scalar, const N: usize, P: crate::fast::SqrtFn> FresnelAverage<N> for Conductor<S, N, P> {
+    /// [`energy::fresnel_average`] of the exact complex-IOR reflectance, per channel.
+    fn average(&self) -> [f64; N] {
+        by_quadrature(self).0
+    }
+    fn normal_reflectance(&self) -> [f64; N] {
+        by_quadrature(self).1
+    }
+}
+
+impl<S: Scalar, const N: usize> FresnelAverage<N> for Dielectric<S, N> {
+    /// [`energy::fresnel_average`] of the exact dielectric reflectance.
+    fn average(&self) -> [f64; N] {
+        by_quadrature(self).0
+    }
+    fn normal_reflectance(&self) -> [f64; N] {
+        by_quadrature(self).1
+    }
+}
+
+impl<S: Scalar> FresnelAverage<3> for AnyFresnel<S> {
+    /// [`energy::fresnel_average`] of the wrapped term.
+    fn average(&self) -> [f64; 3] {
+        by_quadrature(self).0
+    }
+    fn normal_reflectance(&self) -> [f64; 3] {
+        by_quadrature(self).1
+    }
+}
+
+impl<const N: usize> FresnelAverage<N> for NoFresnel {
+    /// `1`.
+    fn average(&self) -> [f64; N] {
+        [1.0; N]
+    }
+    fn normal_reflectance(&self) -> [f64; N] {
+        [1.0; N]
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Kulla & Conty 2017
+// ---------------------------------------------------------------------------------------------
+
+/// Kulla & Conty's multiple-scattering compensation of a Cook-Torrance lobe `M`: the single-
+/// scattering lobe plus a reciprocal lobe carrying the energy it loses.
+///
+/// ```text
+/// f(wi, wo) = f_ss(wi, wo) + F_ms · (1 − E(μi)) (1 − E(μo)) / (π (1 − E_avg))
+/// F_ms      = F_avg² E_avg / (1 − F_avg (1 − E_avg))          (per channel)
+/// ```
+///
+/// `E` is the lobe's directional albedo with `F = 1` ([`AlbedoFit`], fitted at
+/// construction), `E_avg = 2∫E(μ)μ dμ` its average (of the same series, so the added lobe
+/// integrates to exactly `F_ms (1 − E(μo))`), `F_avg` the Fresnel term's average
+/// ([`FresnelAverage`]). With `F = 1` the albedo is `E(μo) + (1 − E(μo)) = 1`: the white
+/// furnace closes (up to the error of the series; tested within 1e-3 for GGX and Beckmann,
+/// `α ∈ [1e-4, 1]`, `μo ∈ [0.05, 1]`). `F_ms` sums the bounces `k ≥ 2` of a walk that
+/// leaves with probability `E_avg` and is weighted by `F_avg` per bounce.
+///
+/// Conventions: `wi`, `wo` in the local frame, away from the surface; `0` below the
+/// horizon; `eval` excludes `cos θi`. Domain: the wrapped model's; isotropic `α` only
+/// ([`AlbedoNdf`]).
+///
+/// Properties: reciprocal when `M` is (the added lobe is symmetric). Albedo
+/// `ρ(wo) ≤ E_F(μo) + F_ms (1 − E(μo)) ≤ 1` when `F ≤ 1` (`E_F ≤ E` the lobe's albedo with
+/// its Fresnel term, `F_ms ≤ F_avg ≤ 1`), up to the series' error.
+///
+/// Sampling ([`SampleBrdf`]): a one-sample mixture (Veach 1997, §9.2.4) of the wrapped
+/// model's sampler and the cosine-weighted hemisphere for the added lobe, the latter chosen
+/// with probability
+///
+/// ```text
+/// P_ms = ρ̂_ms / (ρ̂_ss + ρ̂_ms),   ρ̂_ms = mean(F_ms) (1 − E(μo)),   ρ̂_ss = ρ̂_M(wo) E(μo)
+/// pdf  = (1 − P_ms) pdf_M(wi) + P_ms cos θi/π
+/// ```
+///
+/// (`ρ̂_M` the wrapped model's [`SampleBrdf::albedo_estimate`]); the estimate is
+/// `ρ̂_ss + ρ̂_ms`.
+///
+/// Reference: C. Kulla, A. Conty, "Revisiting Physically Based Shading at Imageworks",
+/// SIGGRAPH 2017 course *Physically Based Shading in Theory and Practice* (after
+/// C. Kelemen, L. Szirmay-Kalos, "A Microfacet Based Coupled Specular-Matte BRDF Model with
+/// Importance Sampling", Eurographics 2001 short papers, for the `(1 − E)(1 − E)` form).
+///
+/// # Examples
+///
+/// ```
+/// use brdf::{Brdf, Vec3, fresnel::NoFresnel, masking::SmithHeightCorrelated};
+/// use brdf::{models::{CookTorrance, KullaConty}, ndf::Ggx};
+/// let ct = CookTorrance::new(Ggx::new(1.0_f32)?, NoFresnel, SmithHeightCorrelated);
+/// let ms = KullaConty::<_, f32, 1>::new(ct)?;
+/// let n = Vec3::new(0.0, 0.0, 1.0);
+/// // The added lobe is positive: the compensated model reflects more.
+/// assert!(ms.eval(n, n)[0] > ct.eval(n, n)[0]);
+/// # Ok::<(), brdf::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KullaConty<M, R, const N: usize> {
+    /// The single-scattering model.
+    pub model: M,
+    albedo: AlbedoFit<R>,
+    /// `F_ms / (π (1 − E_avg))` per channel.
+    k: [R; N],
+    /// `mean(F_ms)`, for the sampler's choice.
+    ms_mean: R,
+    f_avg: [f64; N],
+    f_ms: [f64; N],
+}
+
+impl<S, D, F, Q, const N: usize> KullaConty<CookTorrance<S, D, F, SmithHeightCorrelated, Q>, S, N>
+where
+    S: Scalar,
+    D: AlbedoNdf,
+    F: FresnelAverage<N>,
+{
+    /// Wraps a Cook-Torrance lobe with height-correlated Smith masking: fits `E(μ)` for its
+    /// NDF and `α` ([`AlbedoFit::new`], the whole cost), takes `F_avg` from its Fresnel term.
+    ///
+    /// # Errors
+    /// [`Error::OutOfDomain`] for an anisotropic NDF ([`AlbedoNdf`]).
+    pub fn new(model: CookTorrance<S, D, F, SmithHeightCorrelated, Q>) -> Result<Self, Error> {
+        let (distribution, alpha) = model.ndf.albedo_ndf()?;
+        let albedo = AlbedoFit::new(distribution, alpha)?;
+        let f_avg = model.fresnel.average();
+        Ok(Self::from_parts(model, albedo, f_avg))
+    }
+}
+
+impl<M, S: Scalar, const N: usize> KullaConty<M, S, N> {
+    /// The compensation of `model` from an already fitted albedo and the Fresnel averages
+    /// (each `F_avg ∈ [0, 1]`, clamped): for a lobe the constructor does not know, or to share
+    /// one [`AlbedoFit`] between models of the same roughness. The caller vouches that
+    /// `albedo` is the albedo (with `F = 1`) of `model`.
+    pub fn from_parts(model: M, albedo: AlbedoFit<S>, f_avg: [f64; N]) -> Self {
+        let e_avg = albedo.average();
+        let f_avg = f_avg.map(|f| f.clamp(0.0, 1.0));
+        let f_ms = f_avg.map(|f| energy::kulla_conty_fresnel(f, e_avg));
+        let lobe = energy::kulla_conty_lobe(0.0, 0.0, e_avg);
+        Self {
+            model,
+            albedo,
+            k: f_ms.map(|f| S::of(f * lobe)),
+            ms_mean: S::of(f_ms.iter().sum::<f64>() / N.max(1) as f64),
+            f_avg,
+            f_ms,
+        }
+    }
+}
+
+impl<M, R: Real, const N: usize> KullaConty<M, R, N> {
+    /// The fitted albedo `E(μ)` (with `E_avg`).
+    pub fn albedo(&self) -> &AlbedoFit<R> {
+        &self.albedo
+    }
+
+    /// `F_avg` per channel.
+    pub fn f_avg(&self) -> [f64; N] {
+        self.f_avg
+    }
+
+    /// `F_ms = F_avg² E_avg / (1 − F_avg (1 − E_avg))` per channel.
+    pub fn f_ms(&self) -> [f64; N] {
+        self.f_ms
+    }
+
+    /// The added lobe alone, `F_ms (1 − E(μi))(1 − E(μo)) / (π (1 − E_avg))`, on safe
+    /// directions.
+    #[inline(always)]
+    fn lobe(&self, cos_i: R, cos_o: R) -> R {
+        (R::one() - self.albedo.eval(cos_i)) * (R::one() - self.albedo.eval(cos_o))
+    }
+
+    /// `(ρ̂_ss, ρ̂_ms)` of the sampler (see the type's docs).
+    #[inline(always)]
+    fn estimates(&self, wo: Vec3<R>) -> (R, R)
+    where
+        M: SampleBrdf<R, N>,
+    {
+        let e = self.albedo.eval(wo.z);
+        (
+            self.model.albedo_estimate(wo) * e,
+            self.ms_mean * (R::one() - e),
+        )
+    }
+}
+
+impl<M: Splat, S: Scalar, const N: usize> Splat for KullaConty<M, S, N> {
+    type On<L: Real> = KullaConty<M::On<L>, L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Self::On<L> {
+        KullaConty {
+            model: self.model.splat(),
+            albedo: self.albedo.splat(),
+            k: splat_array(&self.k),
+            ms_mean: splat_scalar(self.ms_mean),
+            f_avg: self.f_avg,
+            f_ms: self.f_ms,
+        }
+    }
+}
+
+/// The energy condition of [`KullaConty`].
+const KC_CONDITION: &str =
+    "F ≤ 1 (ρ ≤ E_F(μo) + F_ms (1 − E(μo)) ≤ 1, up to the error of the E(μ) series)";
+
+impl<M: Brdf<R, N>, R: Real, const N: usize> Brdf<R, N> for KullaConty<M, R, N> {
+    #[inline(always)]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let f = self.model.eval(wi, wo);
+        let (m, swi, swo) = safe_dirs(wi, wo);
+        let lobe = self.lobe(swi.z, swo.z);
+        masked(m, crate::real::channels(|c| lobe.mul_add(self.k[c], f[c])))
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        let own = Properties {
+            reciprocity: Reciprocity::Reciprocal,
+            energy: Energy::ConservingWhen {
+                condition: KC_CONDITION,
+            },
+        };
+        self.model.properties().combine(own, KC_CONDITION)
+    }
+
+    /// The wrapped model's (the added lobe is smooth).
+    #[inline]
+    fn kinks(&self, wo: Vec3<f64>) -> Kinks {
+        self.model.kinks(wo)
+    }
+}
+
+/// A cosine-weighted direction with its density (no value: the mixture evaluates the whole
+/// model once, at the chosen direction).
+#[inline(always)]
+fn cosine_direction<R: Real, const N: usize>(wo: Vec3<R>, u: [R; 3]) -> Sample<R, N> {
+    let wi = crate::analysis::cosine_hemisphere(u[0], u[1]);
+    let pdf = pdf_cosine(wo, wi);
+    Sample::new(wi, pdf, [R::zero(); N], [R::zero(); N], wo.z.gt(R::zero()))
+}
+
+impl<M: SampleBrdf<R, N>, R: Real, const N: usize> SampleBrdf<R, N> for KullaConty<M, R, N> {
+    #[inline(always)]
+    fn sample(&self, wo: Vec3<R>, u: [R; 3]) -> Sample<R, N> {
+        let (ss, ms) = self.estimates(wo);
+        sample_pair(
+            first_probability(ss, ms),
+            wo,
+            u,
+            |u| self.model.sample(wo, u),
+            |u| cosine_direction(wo, u),
+            |wi| self.model.pdf(wo, wi),
+            |wi| pdf_cosine(wo, wi),
+            |wi| self.eval(wi, wo),
+        )
+    }
+
+    #[inline(always)]
+    fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R {
+        let (ss, ms) = self.estimates(wo);
+        pdf_pair(
+            first_probability(ss, ms),
+            wo,
+            wi,
+            |wi| self.model.pdf(wo, wi),
+            |wi| pdf_cosine(wo, wi),
+        )
+    }
+
+    #[inline(always)]
+    fn albedo_estimate(&self, wo: Vec3<R>) -> R {
+        let (ss, ms) = self.estimates(wo);
+        ss + ms
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Turquin 2019
+// ---------------------------------------------------------------------------------------------
+
+/// Turquin's multiple-scattering compensation of a Cook-Torrance lobe `M`: the lobe scaled by
+/// a factor of the view direction alone.
+///
+/// ```text
+/// f(wi, wo) = (1 + F0 (1 − E(μo)) / E(μo)) · f_ss(wi, wo)        (per channel)
+/// ```
+///
+/// `E` as in [`KullaConty`] ([`AlbedoFit`]); `F0 = F(1)` of the wrapped Fresnel term
+/// ([`FresnelAverage::normal_reflectance`]), Turquin's stand-in for the average Fresnel
+/// ([`crate::energy::turquin_factor`]). With `F = 1`: albedo `E(μo)/E(μo) = 1` (up to the
+/// series' error). The lobe keeps its shape (it is the single-scattering one, brighter), so
+/// sampling is the wrapped model's, with the weight scaled.
+///
+/// Conventions and domain as [`KullaConty`].
+///
+/// Properties: **not reciprocal** (the factor depends on `μo` only; a test finds the
+/// violating pairs). View-side albedo `ρ(wo) = factor · E_F(μo) ≤ E(μo) + F0 (1 − E(μo)) ≤ 1`
+/// when `F ≤ 1` (`E_F ≤ E`); the light-side integral is not bounded by it.
+///
+/// Reference: E. Turquin, "Practical multiple scattering compensation for microfacet
+/// models", Industrial Light & Magic technical report, 2019.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Turquin<M, R, const N: usize> {
+    /// The single-scattering model.
+    pub model: M,
+    albedo: AlbedoFit<R>,
+    f0: [R; N],
+}
+
+impl<S, D, F, Q, const N: usize> Turquin<CookTorrance<S, D, F, SmithHeightCorrelated, Q>, S, N>
+where
+    S: Scalar,
+    D: AlbedoNdf,
+    F: FresnelAverage<N>,
+{
+    /// Wraps a Cook-Torrance lobe with height-correlated Smith masking (cost: one
+    /// [`AlbedoFit::new`]); `F0` from its Fresnel term.
+    ///
+    /// # Errors
+    /// [`Error::OutOfDomain`] for an anisotropic NDF ([`AlbedoNdf`]).
+    pub fn new(model: CookTorrance<S, D, F, SmithHeightCorrelated, Q>) -> Result<Self, Error> {
+        let (distribution, alpha) = model.ndf.albedo_ndf()?;
+        let albedo = AlbedoFit::new(distribution, alpha)?;
+        let f0 = model.fresnel.normal_reflectance();
+        Ok(Self::from_parts(model, albedo, f0))
+    }
+}
+
+impl<M, S: Scalar, const N: usize> Turquin<M, S, N> {
+    /// The compensation of `model` from an already fitted albedo and `F0` per channel
+    /// (clamped to `[0, 1]`); the caller vouches that `albedo` is `model`'s (with `F = 1`).
+    pub fn from_parts(model: M, albedo: AlbedoFit<S>, f0: [f64; N]) -> Self {
+        Self {
+            model,
+            albedo,
+            f0: f0.map(|f| S::of(f.clamp(0.0, 1.0))),
+        }
+    }
+}
+
+impl<M, R: Real, const N: usize> Turquin<M, R, N> {
+    /// The fitted albedo `E(μ)`.
+    pub fn albedo(&self) -> &AlbedoFit<R> {
+        &self.albedo
+    }
+
+    /// The factor `1 + F0 (1 − E(μo))/E(μo)` per channel (`E` floored at `1e-30`).
+    #[inline(always)]
+    pub fn factor(&self, cos_theta_o: R) -> [R; N] {
+        let e = self.albedo.eval(cos_theta_o);
+        let s = (R::one() - e) / e.max(R::from_f64(1e-30));
+        crate::real::channels(|c| self.f0[c].mul_add(s, R::one()))
+    }
+}
+
+impl<M: Splat, S: Scalar, const N: usize> Splat for Turquin<M, S, N> {
+    type On<L: Real> = Turquin<M::On<L>, L, N>;
+    #[inline]
+    fn splat<L: Real>(&self) -> Self::On<L> {
+        Turquin {
+            model: self.model.splat(),
+            albedo: self.albedo.splat(),
+            f0: splat_array(&self.f0),
+        }
+    }
+}
+
+/// The reciprocity note of [`Turquin`].
+const TURQUIN_NOTE: &str = "the compensation factor depends on cos θo only";
+/// The energy condition of [`Turquin`].
+const TURQUIN_CONDITION: &str =
+    "F ≤ 1 (view side: ρ(wo) ≤ E(μo) + F0 (1 − E(μo)) ≤ 1, up to the error of the E(μ) series)";
+
+impl<M: Brdf<R, N>, R: Real, const N: usize> Brdf<R, N> for Turquin<M, R, N> {
+    #[inline(always)]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        let f = self.model.eval(wi, wo);
+        let g = self.factor(wo.z);
+        crate::real::channels(|c| f[c] * g[c])
+    }
+
+    #[inline]
+    fn properties(&self) -> Properties {
+        let own = Properties {
+            reciprocity: Reciprocity::NotReciprocal { note: TURQUIN_NOTE },
+            energy: Energy::ConservingWhen {
+                condition: TURQUIN_CONDITION,
+            },
+        };
+        own.combine(self.model.properties(), TURQUIN_CONDITION)
+    }
+
+    /// The wrapped model's (the factor is smooth).
+    #[inline]
+    fn kinks(&self, wo: Vec3<f64>) -> Kinks {
+        self.model.kinks(wo)
+    }
+}
+
+/// The wrapped model's sampler: same directions and density, `f` and the weight scaled by
+/// the factor at `wo`; the albedo estimate is the wrapped one times the factor's channel
+/// mean.
+impl<M: SampleBrdf<R, N>, R: Real, const N: usize> SampleBrdf<R, N> for Turquin<M, R, N> {
+    #[inline(always)]
+    fn sample(&self, wo: Vec3<R>, u: [R; 3]) -> Sample<R, N> {
+        let s = self.model.sample(wo, u);
+        let g = self.factor(wo.z);
+        Sample::new(
+            s.wi,
+            s.pdf,
+            crate::real::channels(|c| s.f[c] * g[c]),
+            crate::real::channels(|c| s.weight[c] * g[c]),
+            s.valid,
+        )
+    }
+
+    #[inline(always)]
+    fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R {
+        self.model.pdf(wo, wi)
+    }
+
+    #[inline(always)]
+    fn albedo_estimate(&self, wo: Vec3<R>) -> R {
+        self.model.albedo_estimate(wo) * mean(self.factor(wo.z))
+    }
+}
