@@ -268,7 +268,10 @@ fn gold_albedo_is_at_most_one_and_gains() {
     }
 }
 
-fn reciprocity_models() -> Vec<KullaConty<Ct<Ggx<f64>, Conductor<f64, 3>>, f64, 3>> {
+/// Kulla-Conty over GGX and the exact gold conductor.
+type GoldKc = KullaConty<Ct<Ggx<f64>, Conductor<f64, 3>>, f64, 3>;
+
+fn reciprocity_models() -> Vec<GoldKc> {
     [0.05, 0.4, 1.0]
         .iter()
         .map(|&a| KullaConty::new(ggx(a, gold())).unwrap())
@@ -281,7 +284,7 @@ proptest! {
     /// f(wi, wo) = f(wo, wi) within 1e-5 relative, grazing included.
     #[test]
     fn kulla_conty_is_reciprocal(k in 0usize..3, wi in common::direction(), wo in common::direction()) {
-        thread_local!(static MODELS: Vec<KullaConty<Ct<Ggx<f64>, Conductor<f64, 3>>, f64, 3>> = reciprocity_models());
+        thread_local!(static MODELS: Vec<GoldKc> = reciprocity_models());
         MODELS.with(|m| {
             let (a, b) = (m[k].eval(wi, wo), m[k].eval(wo, wi));
             for c in 0..3 {
@@ -322,7 +325,10 @@ fn turquin_is_not_reciprocal() {
 // Number types and the batch path
 // ------------------------------------------------------------------------------------------
 
-fn pairs(n: usize) -> Vec<(Vec3<f64>, Vec3<f64>)> {
+/// A direction pair `(wi, wo)`.
+type Pair = (Vec3<f64>, Vec3<f64>);
+
+fn pairs(n: usize) -> Vec<Pair> {
     let g = 0.618_033_988_749_894_9_f64;
     (0..n)
         .map(|i| {
@@ -359,9 +365,8 @@ where
         .fold(0.0, f64::max);
     let mut worst: f64 = 0.0;
     for chunk in ps.chunks(8) {
-        let lane = |f: &dyn Fn(&(Vec3<f64>, Vec3<f64>)) -> f64| {
-            f32x8::from_fn(|l| f(&chunk[l.min(chunk.len() - 1)]) as f32)
-        };
+        let lane =
+            |f: &dyn Fn(&Pair) -> f64| f32x8::from_fn(|l| f(&chunk[l.min(chunk.len() - 1)]) as f32);
         let wi8 = Vec3::new(lane(&|p| p.0.x), lane(&|p| p.0.y), lane(&|p| p.0.z));
         let wo8 = Vec3::new(lane(&|p| p.1.x), lane(&|p| p.1.y), lane(&|p| p.1.z));
         let wide = m8.eval(wi8, wo8);
@@ -400,9 +405,7 @@ fn batch_path_equals_eval() {
 
 fn batch_check<B: BatchBrdf<3>>(m: &B) -> usize {
     let ps = pairs(1000);
-    let col = |f: fn(&(Vec3<f64>, Vec3<f64>)) -> f64| -> Vec<f32> {
-        ps.iter().map(|p| f(p) as f32).collect()
-    };
+    let col = |f: fn(&Pair) -> f64| -> Vec<f32> { ps.iter().map(|p| f(p) as f32).collect() };
     let d = [
         col(|p| p.0.x),
         col(|p| p.0.y),
@@ -751,8 +754,8 @@ fn compensated_gold_albedo_matches_the_random_walk() {
         let mut sum = [0.0; 3];
         for _ in 0..n {
             let r: Walk<3> = walk(&ss.ndf, &ss.fresnel, wo_of(mu), &mut rng, 64);
-            for c in 0..3 {
-                sum[c] += r.energy[c];
+            for (s, e) in sum.iter_mut().zip(r.energy) {
+                *s += e;
             }
         }
         let walk_albedo = sum.map(|s| s / f64::from(n));
