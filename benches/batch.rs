@@ -10,7 +10,8 @@
 //!   (≥ 450 M evaluations/s);
 //! * `normalized_blinn_phong`: the seed's normalized Blinn-Phong, diffuse + specular, one
 //!   channel, with the exact `powf` and with `fast::pow_phong` (|relative error| ≤ 1e-5)
-//!   (≥ 0.7 G evaluations/s).
+//!   (≥ 0.7 G evaluations/s);
+//! * `multiscatter`: GGX + Schlick plain, with Kulla-Conty and with Turquin compensation.
 //!
 //! Every workload runs as `scalar_f32` (one `eval` per pair in a plain loop), on each wide
 //! lane width (`f32x4`, `f32x8`, `f32x16`: the model's `Splat`; on a default build these are
@@ -423,11 +424,52 @@ fn bench_normalized_blinn_phong(c: &mut Criterion) {
     g.finish();
 }
 
+/// Multiple-scattering compensation (issue 13): the GGX + Schlick + height-correlated Smith
+/// lobe of `ggx_schlick` (α = 0.5, one channel) plain, with Kulla-Conty's added lobe (two
+/// 20-term Chebyshev series: two divisions, 38 fused steps) and with Turquin's factor (one
+/// series, one more division), as the scalar loop and through `batch::eval_with`.
+fn bench_multiscatter(c: &mut Criterion) {
+    use brdf::models::{KullaConty, Turquin};
+    let (wi, wo) = (directions(1), directions(7));
+    let mut out = [vec![0.0f32; N]];
+    let mut g = c.benchmark_group("batch/multiscatter");
+    g.throughput(Throughput::Elements(N as u64));
+    let ct = CookTorrance::new(
+        GgxIsotropic::<f32>::new(0.5).unwrap(),
+        Schlick::<f32, 1>::new([0.04]).unwrap(),
+        SmithHeightCorrelated,
+    );
+    let kc = KullaConty::<_, f32, 1>::new(ct).unwrap();
+    let tq = Turquin::<_, f32, 1>::new(ct).unwrap();
+    g.bench_function("plain/scalar_f32", |b| {
+        b.iter(|| scalar(black_box(&ct), &wi, &wo, &mut out))
+    });
+    g.bench_function("kulla_conty/scalar_f32", |b| {
+        b.iter(|| scalar(black_box(&kc), &wi, &wo, &mut out))
+    });
+    g.bench_function("turquin/scalar_f32", |b| {
+        b.iter(|| scalar(black_box(&tq), &wi, &wo, &mut out))
+    });
+    bench_isas(&mut g, "plain", batch::eval_with, &ct, &wi, &wo, &mut out);
+    bench_isas(
+        &mut g,
+        "kulla_conty",
+        batch::eval_with,
+        &kc,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    bench_isas(&mut g, "turquin", batch::eval_with, &tq, &wi, &wo, &mut out);
+    g.finish();
+}
+
 criterion_group!(
     benches,
     bench_memory_ceiling,
     bench_ggx_schlick,
     bench_rough_conductor,
-    bench_normalized_blinn_phong
+    bench_normalized_blinn_phong,
+    bench_multiscatter
 );
 criterion_main!(benches);

@@ -439,7 +439,7 @@ impl<const N: usize> FresnelAverage<N> for NoFresnel {
 /// let ms = KullaConty::<_, f32, 1>::new(ct)?;
 /// let n = Vec3::new(0.0, 0.0, 1.0);
 /// // The added lobe is positive: the compensated model reflects more.
-/// assert!(ms.eval(n, n)[0] > ct.eval(n, n)[0]);
+/// assert!(ms.eval(n, n)[0] > Brdf::<f32, 1>::eval(&ct, n, n)[0]);
 /// # Ok::<(), brdf::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
