@@ -832,7 +832,8 @@ fn multiscatter(dir: &Path) -> Res<PathBuf> {
                 legend: SeriesLabelPosition::UpperRight,
             },
             0.0..90.0,
-            0.0..1.1,
+            // Headroom for the legend above the curves (all below 1).
+            0.0..1.45,
             &metal,
         )?;
         Ok(())
