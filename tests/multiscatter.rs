@@ -856,3 +856,29 @@ fn construction_cost() {
         );
     }
 }
+
+/// Turquin's declaration is for the view side; the light side `∫ f(wi, wo) cos θo dωo`
+/// (the transposed model's albedo) is not bounded by it: with `F = 1` it exceeds 1 — a
+/// located violation, printed and asserted.
+#[test]
+fn turquin_light_side_albedo_exceeds_one() {
+    use brdf::analysis::FnBrdf;
+    let tq = Turquin::<_, f64, 1>::new(ggx(1.0, NoFresnel)).unwrap();
+    let transposed = FnBrdf::new(|wi: Vec3<f64>, wo: Vec3<f64>| tq.eval(wo, wi));
+    let mut worst = (0.0, 0.0);
+    for mu in [0.05, 0.2, 0.5, 1.0] {
+        let [rho] = albedo_of(&transposed, wo_of(mu), &AlbedoConfig::DEFAULT);
+        if rho > worst.0 {
+            worst = (rho, mu);
+        }
+    }
+    eprintln!(
+        "Turquin, GGX α = 1, F = 1: light-side albedo up to {:.4} (cos θi = {})",
+        worst.0, worst.1
+    );
+    assert!(worst.0 > 1.01, "{worst:?}");
+    assert!(matches!(
+        tq.properties().energy,
+        brdf::models::Energy::NotConserving { .. }
+    ));
+}

@@ -27,7 +27,7 @@
 //! | [`KajiyaKay`] | no (diffuse depends on wi only) | only the normalized variant |
 //! | [`Sum`], [`Layered`] | if both parts are | under a stated condition |
 //! | [`KullaConty`] (multiple-scattering compensation) | if the wrapped model is | when `F ≤ 1` (furnace closes with `F = 1`) |
-//! | [`Turquin`] (multiple-scattering compensation) | no (factor of `wo` only) | view side, when `F ≤ 1` |
+//! | [`Turquin`] (multiple-scattering compensation) | no (factor of `wo` only) | no (light side; view side ≤ 1 when `F ≤ 1`) |
 //!
 //! With the `serde` feature each model's file also holds its file description (module
 //! `desc`, re-exported as `brdf::material::LambertDesc`, …), listed once in the

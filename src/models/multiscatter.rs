@@ -646,7 +646,10 @@ impl<M: SampleBrdf<R, N>, R: Real, const N: usize> SampleBrdf<R, N> for KullaCon
 ///
 /// Properties: **not reciprocal** (the factor depends on `μo` only; a test finds the
 /// violating pairs). View-side albedo `ρ(wo) = factor · E_F(μo) ≤ E(μo) + F0 (1 − E(μo)) ≤ 1`
-/// when `F ≤ 1` (`E_F ≤ E`); the light-side integral is not bounded by it.
+/// when `F ≤ 1` (`E_F ≤ E`), but the light-side integral `∫ f cos θo dωo` is not bounded:
+/// it reaches 1.94 at `cos θi = 0.05` (GGX α = 1, `F = 1`; measured in the tests), so
+/// [`Brdf::properties`] declares it not energy conserving, as for the seed's normalized
+/// Blinn-Phong. Real-time use (view-side shading) is what it is made for.
 ///
 /// Reference: E. Turquin, "Practical multiple scattering compensation for microfacet
 /// models", Industrial Light & Magic technical report, 2019.
@@ -718,9 +721,11 @@ impl<M: Splat, S: Scalar, const N: usize> Splat for Turquin<M, S, N> {
 
 /// The reciprocity note of [`Turquin`].
 const TURQUIN_NOTE: &str = "the compensation factor depends on cos θo only";
-/// The energy condition of [`Turquin`].
-const TURQUIN_CONDITION: &str =
-    "F ≤ 1 (view side: ρ(wo) ≤ E(μo) + F0 (1 − E(μo)) ≤ 1, up to the error of the E(μ) series)";
+/// The energy note of [`Turquin`].
+const TURQUIN_NOTE_ENERGY: &str = "light side: ∫ f cos θo dωo reaches 1.94 at cos θi = 0.05 \
+     (GGX α = 1, F = 1); view-side albedo ≤ E(μo) + F0 (1 − E(μo)) ≤ 1 when F ≤ 1";
+/// The composition condition of [`Turquin`] (the wrapped model's own bound).
+const TURQUIN_CONDITION: &str = "F ≤ 1 (view side)";
 
 impl<M: Brdf<R, N>, R: Real, const N: usize> Brdf<R, N> for Turquin<M, R, N> {
     #[inline(always)]
@@ -734,8 +739,8 @@ impl<M: Brdf<R, N>, R: Real, const N: usize> Brdf<R, N> for Turquin<M, R, N> {
     fn properties(&self) -> Properties {
         let own = Properties {
             reciprocity: Reciprocity::NotReciprocal { note: TURQUIN_NOTE },
-            energy: Energy::ConservingWhen {
-                condition: TURQUIN_CONDITION,
+            energy: Energy::NotConserving {
+                note: TURQUIN_NOTE_ENERGY,
             },
         };
         own.combine(self.model.properties(), TURQUIN_CONDITION)
