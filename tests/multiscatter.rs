@@ -606,7 +606,7 @@ where
         for k in 0..N {
             energy[k] *= f[k];
         }
-        w = wm.scale(2.0 * d).add(w);
+        w = wm.scale(2.0 * d) + w;
     }
 }
 

@@ -583,7 +583,7 @@ impl<M: Brdf<R, N>, R: Real, const N: usize> Brdf<R, N> for KullaConty<M, R, N> 
 /// model once, at the chosen direction).
 #[inline(always)]
 fn cosine_direction<R: Real, const N: usize>(wo: Vec3<R>, u: [R; 3]) -> Sample<R, N> {
-    let wi = crate::analysis::cosine_hemisphere(u[0], u[1]);
+    let wi = crate::sampling::cosine_hemisphere(u[0], u[1]);
     let pdf = pdf_cosine(wo, wi);
     Sample::new(wi, pdf, [R::zero(); N], [R::zero(); N], wo.z.gt(R::zero()))
 }
