@@ -144,6 +144,19 @@ pub fn directional_albedo(
     alpha: f64,
     cos_theta_o: f64,
 ) -> Result<f64, Error> {
+    let [e] = lobe_moments(distribution, alpha, cos_theta_o, |_| [1.0])?;
+    Ok(e)
+}
+
+/// `∫ D G2 w(wo·wm) / (4 cos θi cos θo) cos θi dωi` for `K` weights `w` of `wo·wm` at once, by
+/// the rule of [`directional_albedo`] (which is the case `K = 1`, `w = 1`; the split-sum
+/// table takes Schlick's two weights). Validates as [`directional_albedo`].
+pub(crate) fn lobe_moments<const K: usize>(
+    distribution: Distribution,
+    alpha: f64,
+    cos_theta_o: f64,
+    weight: impl Fn(f64) -> [f64; K],
+) -> Result<[f64; K], Error> {
     crate::error::unit_interval("cos_theta_o", cos_theta_o)?;
     crate::error::check("alpha", alpha, "[1e-4, 1]", |a| (1e-4..=1.0).contains(&a))?;
     Ok(match distribution {
@@ -153,6 +166,7 @@ pub fn directional_albedo(
                 cos_theta_o,
                 |w| alpha * alpha * (1.0 - w * w) / (w * w),
                 |t2| alpha / Real::sqrt(alpha * alpha + t2),
+                weight,
             ),
             Err(e) => return Err(e),
         },
@@ -162,18 +176,20 @@ pub fn directional_albedo(
                 cos_theta_o,
                 |w| -2.0 * alpha * alpha * Real::ln(w),
                 |t2| Real::exp(-0.5 * t2 / (alpha * alpha)),
+                weight,
             ),
             Err(e) => return Err(e),
         },
     })
 }
 
-fn albedo_with<D: SmithLambda<f64>>(
+fn albedo_with<D: SmithLambda<f64>, const K: usize>(
     ndf: &D,
     cos_theta_o: f64,
     tan2_of_w: impl Fn(f64) -> f64,
     w_of_tan2: impl Fn(f64) -> f64,
-) -> f64 {
+    weight: impl Fn(f64) -> [f64; K],
+) -> [f64; K] {
     let mu = cos_theta_o.clamp(1e-6, 1.0);
     let s = Real::sqrt(1.0 - mu * mu);
     let wo = Vec3::new(s, 0.0, mu);
@@ -186,7 +202,7 @@ fn albedo_with<D: SmithLambda<f64>>(
         // w = √(1 − v) from w_h (the horizon) to 1 (the normal); dv = 2w dw.
         let w_h = w_of_tan2(t2h);
         let len = 1.0 - w_h;
-        len * integrate_01(&nodes, |x| {
+        let sum = integrate_01_k(&nodes, |x| {
             let w = w_h + len * x;
             let t2 = tan2_of_w(w).min(t2h);
             let c = 1.0 / Real::sqrt(1.0 + t2);
@@ -199,15 +215,17 @@ fn albedo_with<D: SmithLambda<f64>>(
                 2.0 * d * wm.z - wo.z,
             );
             if wi.z <= 0.0 || d <= 0.0 {
-                0.0
+                [0.0; K]
             } else {
-                2.0 * w * d / (mu * c * (1.0 + lo + ndf.lambda(wi)))
+                let e = 2.0 * w * d / (mu * c * (1.0 + lo + ndf.lambda(wi)));
+                weight(d).map(|k| k * e)
             }
-        })
+        });
+        sum.map(|v| len * v)
     };
     // The horizon bound v_h(φ) turns from ≈ 1 to ≈ 0 where cos φm crosses a band of width
     // ~μo around 0: panels in φm graded geometrically in cos φm = ±μo·4^k resolve it.
-    let mut total = 0.0;
+    let mut total = [0.0; K];
     let mut prev = 0.0; // φ of the previous break point
     let mut k = 0;
     loop {
@@ -218,7 +236,10 @@ fn albedo_with<D: SmithLambda<f64>>(
         };
         let h = next - prev;
         if h > 0.0 {
-            total += h * integrate_01(&nodes, |y| inner(prev + h * y));
+            let panel = integrate_01_k(&nodes, |y| inner(prev + h * y));
+            for (t, p) in total.iter_mut().zip(panel) {
+                *t += h * p;
+            }
         }
         if next >= core::f64::consts::PI {
             break;
@@ -226,7 +247,27 @@ fn albedo_with<D: SmithLambda<f64>>(
         prev = next;
         k += 1;
     }
-    total / core::f64::consts::PI
+    total.map(|t| t / core::f64::consts::PI)
+}
+
+/// [`integrate_01`] for `K` integrands at once (the same nodes, sums and rounding per
+/// component as `K` separate calls).
+fn integrate_01_k<const K: usize>(
+    nodes: &([f64; ORDER], [f64; ORDER]),
+    mut g: impl FnMut(f64) -> [f64; K],
+) -> [f64; K] {
+    let h = 1.0 / PANELS as f64;
+    let mut sum = [0.0; K];
+    for p in 0..PANELS {
+        let a = p as f64 * h;
+        for k in 0..ORDER {
+            let v = g(a + nodes.0[k] * h);
+            for (s, v) in sum.iter_mut().zip(v) {
+                *s += nodes.1[k] * h * v;
+            }
+        }
+    }
+    sum
 }
 
 /// The `k`-th break point in `cos φm` (descending) of the graded φ mesh, `None` past −1.
@@ -340,6 +381,186 @@ pub fn kulla_conty_lobe<R: Real>(e_i: R, e_o: R, e_avg: R) -> R {
 #[must_use]
 pub fn turquin_factor<R: Real>(f0: R, e_o: R) -> R {
     R::one() + f0 * (R::one() - e_o) / e_o.max(R::from_f64(1e-30))
+}
+
+// ---------------------------------------------------------------------------------------
+// Shipped tables of E(μ, α) and E_avg(α)
+// ---------------------------------------------------------------------------------------
+
+mod tables;
+
+/// Nodes of the shipped albedo tables along the view axis `s` ([`albedo_table_s`]).
+///
+/// (To change a table size: set it here, run `cargo run --release -p brdf-tools --bin
+/// energy_tables`, which rewrites `src/energy/tables.rs`; the tables are slices, so the crate
+/// compiles before they are regenerated, and `tests/energy_tables.rs` checks their lengths.)
+pub const ALBEDO_TABLE_MU: usize = 128;
+/// Nodes of the shipped albedo tables along the roughness axis `t` ([`albedo_table_t`]).
+pub const ALBEDO_TABLE_ALPHA: usize = 64;
+
+/// Smallest `α` of the tables (and of [`directional_albedo`]'s domain).
+const ALPHA_MIN: f64 = 1e-4;
+
+/// The view coordinate of the albedo tables, `s = √(μ (1 + α) / (μ + α))` ∈ `[0, 1]`.
+///
+/// Two features of `E(μ, α)` set it. As `α → 0`, `E` becomes a function of `μ/α` alone (the
+/// lobe and the masking `Λ(a)`, `a = cot θo / α`, both scale with `α` in slope space), with a
+/// dip at `μ ~ α` that a grid in `μ` cannot follow; at fixed `x = μ (1 + α)/(μ + α)`,
+/// `μ/α = x / (1 + α − x)` tends to `x/(1 − x)`, so `E` has a limit as `α → 0` and the grid
+/// resolves the dip at every roughness. And at grazing, `E → 1` (`Λ(wo) → ∞` makes
+/// `G2/G1(wo) → 1`, and every visible facet reflects a horizontal `wo` upwards) with
+/// `1 − E ∝ μ (c − ln μ)`, an infinite slope at `μ = 0` (a bilinear table on `x` was 1.8e-3
+/// off at `α = 0.78`, `μ = 0.0035`); the square root makes it `∝ s² (c − 2 ln s)`, whose
+/// slope vanishes there. `s` maps `μ = 0 → 0` and `μ = 1 → 1`; inverse
+/// `μ = s² α / (1 + α − s²)`.
+///
+/// Domain `μ ∈ [0, 1]`, `α ∈ [1e-4, 1]`.
+#[inline(always)]
+#[must_use]
+pub fn albedo_table_s<R: Real>(cos_theta_o: R, alpha: R) -> R {
+    (cos_theta_o * (R::one() + alpha) / (cos_theta_o + alpha)).sqrt()
+}
+
+/// The roughness coordinate of the albedo tables, `t = (√α − 0.01) / 0.99` ∈ `[0, 1]`: the
+/// perceptual roughness `√α` rescaled so that `α = 1e-4 → 0` and `α = 1 → 1`.
+///
+/// Domain `α ∈ [1e-4, 1]`.
+#[inline(always)]
+#[must_use]
+pub fn albedo_table_t<R: Real>(alpha: R) -> R {
+    (alpha.sqrt() - R::from_f64(0.01)) / R::from_f64(0.99)
+}
+
+/// `α` at roughness node `j` of the tables: the inverse of [`albedo_table_t`] at
+/// `t = j / (ALBEDO_TABLE_ALPHA − 1)`, `α = (0.01 + 0.99 t)²`, clamped to `[1e-4, 1]`.
+fn table_alpha(j: usize) -> f64 {
+    let t = j as f64 / (ALBEDO_TABLE_ALPHA - 1) as f64;
+    let r = 0.01 + 0.99 * t;
+    (r * r).clamp(ALPHA_MIN, 1.0)
+}
+
+/// `μ` at view node `i` for roughness `α`: the inverse of [`albedo_table_s`] at
+/// `s = i / (ALBEDO_TABLE_MU − 1)`, `μ = s² α / (1 + α − s²)`, clamped to `[0, 1]`.
+fn table_mu(i: usize, alpha: f64) -> f64 {
+    let s = i as f64 / (ALBEDO_TABLE_MU - 1) as f64;
+    let x = s * s;
+    (x * alpha / (1.0 + alpha - x)).clamp(0.0, 1.0)
+}
+
+/// Node `(i, j)` of the shipped `E(μ, α)` table, computed now: [`directional_albedo`] at
+/// `α` of roughness node `j` and `μ` of view node `i` (see [`albedo_table_s`],
+/// [`albedo_table_t`]), rounded to `f32`. The shipped value is this number, bit for bit
+/// (`tests/energy_tables.rs` regenerates the tables and fails on any difference; the program
+/// `cargo run --release -p brdf-tools --bin energy_tables` writes `src/energy/tables.rs`).
+///
+/// Domain `i < ALBEDO_TABLE_MU`, `j < ALBEDO_TABLE_ALPHA` (panics outside).
+#[must_use]
+pub fn albedo_table_node(distribution: Distribution, i: usize, j: usize) -> f32 {
+    assert!(i < ALBEDO_TABLE_MU && j < ALBEDO_TABLE_ALPHA, "node ({i}, {j})");
+    let alpha = table_alpha(j);
+    let e = directional_albedo(distribution, alpha, table_mu(i, alpha));
+    e.unwrap_or(f64::NAN) as f32
+}
+
+/// Node `j` of the shipped `E_avg(α)` table, computed now: [`average_albedo`] at `α` of
+/// roughness node `j`, rounded to `f32` (regenerated bit for bit by the same test and program
+/// as [`albedo_table_node`]).
+///
+/// Domain `j < ALBEDO_TABLE_ALPHA` (panics outside).
+#[must_use]
+pub fn average_albedo_table_node(distribution: Distribution, j: usize) -> f32 {
+    assert!(j < ALBEDO_TABLE_ALPHA, "node {j}");
+    average_albedo(distribution, table_alpha(j)).unwrap_or(f64::NAN) as f32
+}
+
+/// The shipped tables of one distribution: `E` row-major (`ALBEDO_TABLE_ALPHA` rows of
+/// `ALBEDO_TABLE_MU`), and `E_avg` (`ALBEDO_TABLE_ALPHA` values), in `f32`.
+#[must_use]
+pub fn albedo_tables(distribution: Distribution) -> (&'static [f32], &'static [f32]) {
+    match distribution {
+        Distribution::Ggx => (tables::GGX_E, tables::GGX_E_AVG),
+        Distribution::Beckmann => (tables::BECKMANN_E, tables::BECKMANN_E_AVG),
+    }
+}
+
+/// `table[k]` for each lane's index `k` (a gather; one load per lane).
+#[inline(always)]
+fn gather<R: Real>(table: &[f32], k: R) -> R {
+    R::from_fn(|l| {
+        let k: f64 = k.lane(l).into();
+        <R::Scalar as crate::Scalar>::of(f64::from(table[k as usize]))
+    })
+}
+
+/// Directional albedo `E(μo, α)` of [`directional_albedo`] (isotropic, `F = 1`,
+/// height-correlated Smith) looked up in the shipped table: bilinear interpolation on the
+/// axes `s` = [`albedo_table_s`] and `t` = [`albedo_table_t`] over
+/// [`ALBEDO_TABLE_MU`] × [`ALBEDO_TABLE_ALPHA`] nodes.
+///
+/// ```text
+/// E(μ, α) ≈ (1 − u)(1 − v) E[j][i] + u (1 − v) E[j][i+1] + (1 − u) v E[j+1][i] + u v E[j+1][i+1]
+/// s (N_μ − 1) = i + u,   t (N_α − 1) = j + v
+/// ```
+///
+/// Branch-free on every lane type (one gather of four nodes per lane). Domain `α ∈ [1e-4,
+/// 1]`, `μ ∈ [0, 1]`; inputs outside are clamped to them (NaN to the lower bound), so the
+/// result is always in `[0, 1]`. Accuracy: within 1e-3 of [`directional_albedo`] over the
+/// whole domain (measured worst and where it peaks: `tests/energy_tables.rs` and the guide).
+///
+/// References: as [`directional_albedo`]; the tables serve Kulla & Conty 2017 and
+/// Turquin 2019.
+///
+/// ```
+/// use brdf::energy::{directional_albedo, directional_albedo_table, Distribution};
+/// let e = directional_albedo_table(Distribution::Ggx, 0.5_f32, 0.3);
+/// assert!((f64::from(e) - directional_albedo(Distribution::Ggx, 0.5, 0.3)?).abs() < 1e-3);
+/// # Ok::<(), brdf::Error>(())
+/// ```
+#[inline(always)]
+#[must_use]
+pub fn directional_albedo_table<R: Real>(
+    distribution: Distribution,
+    alpha: R,
+    cos_theta_o: R,
+) -> R {
+    let (e, _) = albedo_tables(distribution);
+    let alpha = alpha.clamp(R::from_f64(ALPHA_MIN), R::one());
+    let mu = cos_theta_o.saturate();
+    let s = albedo_table_s(mu, alpha).saturate();
+    let t = albedo_table_t(alpha).saturate();
+    let (nx, ny) = (ALBEDO_TABLE_MU, ALBEDO_TABLE_ALPHA);
+    let fx = s * R::from_f64((nx - 1) as f64);
+    let fy = t * R::from_f64((ny - 1) as f64);
+    let ix = fx.floor().min(R::from_f64((nx - 2) as f64));
+    let iy = fy.floor().min(R::from_f64((ny - 2) as f64));
+    let (u, v) = (fx - ix, fy - iy);
+    let k = iy * R::from_f64(nx as f64) + ix;
+    let e00 = gather(e, k);
+    let e01 = gather(e, k + R::one());
+    let e10 = gather(e, k + R::from_f64(nx as f64));
+    let e11 = gather(e, k + R::from_f64((nx + 1) as f64));
+    let e0 = e00 + u * (e01 - e00);
+    let e1 = e10 + u * (e11 - e10);
+    e0 + v * (e1 - e0)
+}
+
+/// Hemispherical average `E_avg(α)` of [`average_albedo`] looked up in the shipped table:
+/// linear interpolation in `t` = [`albedo_table_t`] over [`ALBEDO_TABLE_ALPHA`] nodes.
+///
+/// Branch-free on every lane type. Domain `α ∈ [1e-4, 1]` (clamped, NaN to `1e-4`); result in
+/// `[0, 1]`. Accuracy: within 1e-3 of [`average_albedo`] (`tests/energy_tables.rs`).
+/// Reference: Kulla & Conty 2017 (`E_avg`).
+#[inline(always)]
+#[must_use]
+pub fn average_albedo_table<R: Real>(distribution: Distribution, alpha: R) -> R {
+    let (_, avg) = albedo_tables(distribution);
+    let alpha = alpha.clamp(R::from_f64(ALPHA_MIN), R::one());
+    let fy = albedo_table_t(alpha).saturate() * R::from_f64((ALBEDO_TABLE_ALPHA - 1) as f64);
+    let iy = fy.floor().min(R::from_f64((ALBEDO_TABLE_ALPHA - 2) as f64));
+    let v = fy - iy;
+    let a0 = gather(avg, iy);
+    let a1 = gather(avg, iy + R::one());
+    a0 + v * (a1 - a0)
 }
 
 /// `acos` on `[-1, 1]` for the quadrature mesh, by `atan2`-free bisection-free identity

@@ -86,6 +86,8 @@
 //!   (they hold other materials); the crate stays `no_std`.
 //! * `serde`: material descriptions that load from files (`material::MaterialDesc`,
 //!   validated on load); enables `alloc`.
+//! * `half`: `f16` split-sum tables (`split_sum::fill_dfg_f16`), in the IEEE binary16 type of
+//!   the [`half`](https://docs.rs/half) crate that engines upload as `R16G16_FLOAT`; `no_std`.
 //!
 //! ## Re-exported dependencies: glam 0.34, num-complex 0.4
 //!
@@ -137,6 +139,7 @@ pub mod ndf;
 pub mod normalization;
 pub mod real;
 pub mod sampling;
+pub mod split_sum;
 pub mod vec3;
 
 pub use glam;

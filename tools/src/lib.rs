@@ -12,6 +12,7 @@ use std::sync::{Arc, OnceLock};
 
 use resvg::{tiny_skia, usvg};
 
+pub mod dds;
 pub mod render;
 pub mod sampling_stats;
 

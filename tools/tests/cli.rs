@@ -151,3 +151,94 @@ fn header_text_wraps_to_the_width() {
         ["unbreakable"]
     );
 }
+
+#[test]
+fn dfg_rejects_bad_sizes_formats_and_layouts() {
+    let exe = env!("CARGO_BIN_EXE_dfg");
+    let help = run(exe, &["--help"]);
+    assert_eq!(help.status.code(), Some(0));
+    assert!(text(&help.stdout).contains("USAGE:"));
+    for bad in [
+        &["--size", "8"][..],
+        &["--size", "513"],
+        &["--size", "x"],
+        &["--format", "f64"],
+        &["--layout", "both"],
+        &["--bogus"],
+    ] {
+        let out = run(exe, bad);
+        assert_eq!(out.status.code(), Some(2), "{bad:?}");
+        assert!(text(&out.stderr).contains("USAGE:"), "{bad:?}");
+    }
+    // An output folder inside a regular file: an error before computing.
+    let dir = scratch("dfg-unwritable");
+    let file = dir.join("file");
+    std::fs::write(&file, b"x").unwrap();
+    let out = run(exe, &["--size", "16", "--out", file.join("t.dds").to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stderr).contains("cannot create"), "{}", text(&out.stderr));
+}
+
+/// The DDS files parse back (every header field of `brdf_tools::dds`) to the texels the
+/// library computes, for both formats and layouts; the PNG preview is a PNG.
+#[test]
+fn dfg_writes_dds_that_parse_back_to_the_library_table() {
+    use brdf::split_sum::{DfgLayout, fill_dfg_f16, fill_dfg_f32};
+    use brdf_tools::dds;
+    let dir = scratch("dfg");
+    let n = 16;
+    for (format, layout, name) in [
+        ("f16", DfgLayout::SplitSum, "split-sum"),
+        ("f32", DfgLayout::SplitSum, "split-sum"),
+        ("f32", DfgLayout::Multiscatter, "multiscatter"),
+    ] {
+        let dds_path = dir.join(format!("{format}-{name}.dds"));
+        let png_path = dir.join(format!("{format}-{name}.png"));
+        let out = run(
+            env!("CARGO_BIN_EXE_dfg"),
+            &[
+                "--size",
+                "16",
+                "--format",
+                format,
+                "--layout",
+                name,
+                "--out",
+                dds_path.to_str().unwrap(),
+                "--png",
+                png_path.to_str().unwrap(),
+            ],
+        );
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+        let tex = dds::parse(&std::fs::read(&dds_path).unwrap()).unwrap();
+        assert_eq!((tex.width, tex.height), (16, 16));
+        let mut want32 = vec![0.0f32; 2 * n * n];
+        fill_dfg_f32(n, layout, &mut want32).unwrap();
+        if format == "f16" {
+            assert_eq!(tex.dxgi_format, dds::DXGI_R16G16_FLOAT);
+            let mut want = vec![half::f16::ZERO; 2 * n * n];
+            fill_dfg_f16(n, layout, &mut want).unwrap();
+            let got: Vec<half::f16> = tex
+                .data
+                .chunks(2)
+                .map(|b| half::f16::from_le_bytes([b[0], b[1]]))
+                .collect();
+            assert_eq!(got, want);
+        } else {
+            assert_eq!(tex.dxgi_format, dds::DXGI_R32G32_FLOAT);
+            let got: Vec<f32> = tex
+                .data
+                .chunks(4)
+                .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+                .collect();
+            assert_eq!(got, want32);
+        }
+        let png = std::fs::read(&png_path).unwrap();
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    }
+    // A damaged header is reported by field.
+    let mut bytes = std::fs::read(dir.join("f32-split-sum.dds")).unwrap();
+    bytes[84] = b'X';
+    assert!(dds::parse(&bytes).unwrap_err().contains("dwFourCC"));
+    assert!(dds::parse(&bytes[..100]).is_err());
+}

@@ -40,6 +40,7 @@ USAGE:
     cargo run --release -p brdf-tools --bin tradeoffs [-- OPTIONS]
 
 OPTIONS:
+    --only split-sum  print only the split-sum (DFG) fits section (no timings)
     -h, --help        this text";
 use std::time::Instant;
 
@@ -1637,9 +1638,82 @@ fn sampling_report() {
     }
 }
 
+/// Issue 13: the analytic environment-BRDF fits engines use instead of the split-sum table,
+/// against the table (`brdf::split_sum::dfg`) at the texel centres of a 64 × 64 table.
+fn split_sum_report() {
+    use brdf::split_sum::{dfg, dfg_texel_centre, env_brdf_approx, lazarov_env_brdf};
+    const N: usize = 64;
+    println!(
+        "### Split-sum DFG: analytic fits against the table (GGX, Schlick, height-correlated Smith)\n\n\
+         Error of the specular albedo `F0·A + B` against `brdf::split_sum::dfg` at the {N} × {N} \
+         texel centres (`n·v = (i + ½)/{N}`, perceptual roughness `r = (j + ½)/{N}`, `α = r²`), and \
+         of `A` and `B` alone. Karis 2014 (`env_brdf_approx`) takes `r`; Lazarov 2013 \
+         (`lazarov_env_brdf`, a fit for Black Ops II's Blinn-Phong) takes the gloss `g = 1 − r`, \
+         and its combined value is saturated as in its paper. RMS over all texels.\n"
+    );
+    let mut table = Vec::with_capacity(N * N);
+    for j in 0..N {
+        for i in 0..N {
+            let (mu, alpha) = dfg_texel_centre(N, i, j);
+            let t = dfg(mu, alpha).expect("texel centres are in the domain");
+            table.push((mu, (j as f64 + 0.5) / N as f64, t.a, t.b));
+        }
+    }
+    println!("| fit | quantity | max abs err | RMS err | worst at (n·v, r) |");
+    println!("|---|---|---:|---:|---|");
+    type Fit = fn(f64, f64) -> (f64, f64);
+    let fits: [(&str, Fit, bool); 2] = [
+        ("Karis 2014 `EnvBRDFApprox`", |r, mu| env_brdf_approx(r, mu), false),
+        ("Lazarov 2013", |r, mu| lazarov_env_brdf(1.0 - r, mu), true),
+    ];
+    for (name, fit, saturate) in fits {
+        let quantities: [(&str, Box<dyn Fn(f64, f64) -> f64>); 4] = [
+            ("A", Box::new(|a, _| a)),
+            ("B", Box::new(|_, b| b)),
+            ("F0·A + B, F0 = 0.04", Box::new(|a, b| 0.04 * a + b)),
+            ("F0·A + B, F0 = 1", Box::new(|a, b| a + b)),
+        ];
+        for (k, (q, f)) in quantities.iter().enumerate() {
+            let (mut max, mut sum2, mut at) = (0.0f64, 0.0, (0.0, 0.0));
+            for &(mu, r, a, b) in &table {
+                let (fa, fb) = fit(r, mu);
+                let mut approx = f(fa, fb);
+                if saturate && k >= 2 {
+                    approx = approx.clamp(0.0, 1.0);
+                }
+                let err = (approx - f(a, b)).abs();
+                sum2 += err * err;
+                if err > max {
+                    (max, at) = (err, (mu, r));
+                }
+            }
+            let rms = (sum2 / table.len() as f64).sqrt();
+            println!(
+                "| {} | {q} | {} | {} | ({:.3}, {:.3}) |",
+                if k == 0 { name } else { "″" },
+                e(max),
+                e(rms),
+                at.0,
+                at.1
+            );
+        }
+    }
+    println!();
+}
+
 fn main() {
-    // No options besides --help: anything else is an error (exit status 2).
-    let _ = brdf_tools::Args::parse(&[], &[], USAGE);
+    let args = brdf_tools::Args::parse(&["--only"], &[], USAGE);
+    match args.value("--only") {
+        None => {}
+        Some("split-sum") => {
+            split_sum_report();
+            return;
+        }
+        Some(other) => {
+            eprintln!("error: --only takes split-sum, not `{other}`\n\n{USAGE}");
+            std::process::exit(2);
+        }
+    }
     let start = Instant::now();
     println!("## Speed versus accuracy (`cargo run --release -p brdf-tools --bin tradeoffs`)\n");
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
@@ -1674,6 +1748,7 @@ fn main() {
         bad += print_table(t);
     }
     sampling_report();
+    split_sum_report();
     println!("Total run time: {:.1} s.", start.elapsed().as_secs_f64());
     if bad > 0 {
         eprintln!("{bad} rows with non-finite values");
