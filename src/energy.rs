@@ -202,7 +202,11 @@ fn albedo_with<D: SmithLambda<f64>, const K: usize>(
         // w = √(1 − v) from w_h (the horizon) to 1 (the normal); dv = 2w dw.
         let w_h = w_of_tan2(t2h);
         let len = 1.0 - w_h;
-        let sum = integrate_01_k(&nodes, |x| {
+        // Near the horizon end (x → 0) the weight behaves as wi.z/(wi.z + μo) (Λ(wi) ≈ α/2wi.z
+        // against Λ(wo) ≈ α/2μo): a layer of width ≈ w_h/len in x that uniform panels miss by
+        // a few 1e-6 at μo → 0 (then E > 1). Panels graded geometrically from that width up.
+        let layer = (w_h / len).max(1e-9);
+        let sum = integrate_01_graded(&nodes, layer, |x| {
             let w = w_h + len * x;
             let t2 = tan2_of_w(w).min(t2h);
             let c = 1.0 / Real::sqrt(1.0 + t2);
@@ -248,6 +252,36 @@ fn albedo_with<D: SmithLambda<f64>, const K: usize>(
         k += 1;
     }
     total.map(|t| t / core::f64::consts::PI)
+}
+
+/// [`integrate_01_k`] with the first panel `[0, 1/PANELS]` split at `layer·4^k` (nodes
+/// graded towards 0, for an integrand with a boundary layer of width `layer` there).
+fn integrate_01_graded<const K: usize>(
+    nodes: &([f64; ORDER], [f64; ORDER]),
+    layer: f64,
+    mut g: impl FnMut(f64) -> [f64; K],
+) -> [f64; K] {
+    let h = 1.0 / PANELS as f64;
+    let mut sum = [0.0; K];
+    let mut panel = |a: f64, b: f64, sum: &mut [f64; K]| {
+        for k in 0..ORDER {
+            let v = g(a + nodes.0[k] * (b - a));
+            for (s, v) in sum.iter_mut().zip(v) {
+                *s += nodes.1[k] * (b - a) * v;
+            }
+        }
+    };
+    let (mut a, mut b) = (0.0, layer);
+    while b < h {
+        panel(a, b, &mut sum);
+        a = b;
+        b *= 4.0;
+    }
+    panel(a, h, &mut sum);
+    for p in 1..PANELS {
+        panel(p as f64 * h, (p + 1) as f64 * h, &mut sum);
+    }
+    sum
 }
 
 /// [`integrate_01`] for `K` integrands at once (the same nodes, sums and rounding per

@@ -52,7 +52,7 @@ fn ggx_albedo_matches_the_adaptive_reference() {
         "GGX worst |E − ref| = {:.3e} at α = {}, μ = {}",
         worst.0, worst.1, worst.2
     );
-    assert!(worst.0 < 5e-4, "{worst:?}");
+    assert!(worst.0 < 1.5e-5, "{worst:?}");
 }
 
 #[test]
@@ -75,7 +75,7 @@ fn beckmann_albedo_matches_the_adaptive_reference() {
         "Beckmann worst |E − ref| = {:.3e} at α = {}, μ = {}",
         worst.0, worst.1, worst.2
     );
-    assert!(worst.0 < 5e-4, "{worst:?}");
+    assert!(worst.0 < 1.5e-5, "{worst:?}");
 }
 
 /// The mean of the visible-normal sampler's weight `G2/G1(wo)` (`F = 1`) estimates `E`.
