@@ -490,7 +490,10 @@ fn table_mu(i: usize, alpha: f64) -> f64 {
 /// Domain `i < ALBEDO_TABLE_MU`, `j < ALBEDO_TABLE_ALPHA` (panics outside).
 #[must_use]
 pub fn albedo_table_node(distribution: Distribution, i: usize, j: usize) -> f32 {
-    assert!(i < ALBEDO_TABLE_MU && j < ALBEDO_TABLE_ALPHA, "node ({i}, {j})");
+    assert!(
+        i < ALBEDO_TABLE_MU && j < ALBEDO_TABLE_ALPHA,
+        "node ({i}, {j})"
+    );
     let alpha = table_alpha(j);
     let e = directional_albedo(distribution, alpha, table_mu(i, alpha));
     e.unwrap_or(f64::NAN) as f32

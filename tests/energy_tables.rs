@@ -134,12 +134,16 @@ fn interpolated_average_albedo_is_within_1e_3_of_the_quadrature() {
         let mut worst = (0.0, 0.0);
         for j in (0..ALBEDO_TABLE_ALPHA - 1).filter(|j| *j < 4 || j % 6 == 5) {
             let alpha = alpha_at((j as f64 + 0.5) / (ALBEDO_TABLE_ALPHA - 1) as f64);
-            let err = (average_albedo_table(dist, alpha) - average_albedo(dist, alpha).unwrap()).abs();
+            let err =
+                (average_albedo_table(dist, alpha) - average_albedo(dist, alpha).unwrap()).abs();
             if err > worst.0 {
                 worst = (err, alpha);
             }
         }
-        eprintln!("{dist:?}: worst |E_avg table − direct| = {:.3e} at α = {:.3e}", worst.0, worst.1);
+        eprintln!(
+            "{dist:?}: worst |E_avg table − direct| = {:.3e} at α = {:.3e}",
+            worst.0, worst.1
+        );
         assert!(worst.0 <= 1e-3, "{dist:?}: {worst:?}");
     }
 }
@@ -155,9 +159,15 @@ fn the_lookup_reproduces_the_nodes() {
                 let mu = mu_at(i as f64 / (ALBEDO_TABLE_MU - 1) as f64, alpha);
                 let node = f64::from(e[j * ALBEDO_TABLE_MU + i]);
                 let got = directional_albedo_table(dist, alpha, mu);
-                assert!((got - node).abs() < 1e-9, "{dist:?} ({i}, {j}): {got} vs {node}");
+                assert!(
+                    (got - node).abs() < 1e-9,
+                    "{dist:?} ({i}, {j}): {got} vs {node}"
+                );
                 let got32 = directional_albedo_table(dist, alpha as f32, mu as f32);
-                assert!((f64::from(got32) - node).abs() < 2e-5, "{dist:?} f32 ({i}, {j}): {got32}");
+                assert!(
+                    (f64::from(got32) - node).abs() < 2e-5,
+                    "{dist:?} f32 ({i}, {j}): {got32}"
+                );
             }
         }
     }
@@ -210,18 +220,31 @@ fn mc_albedo<M: SampleBrdf<f64, 1>>(m: &M, mu: f64, seed: u64) -> (f64, f64) {
         s2 += w * w;
     }
     let mean = s / f64::from(n);
-    (mean, ((s2 / f64::from(n) - mean * mean) / f64::from(n)).sqrt())
+    (
+        mean,
+        ((s2 / f64::from(n) - mean * mean) / f64::from(n)).sqrt(),
+    )
 }
 
 #[test]
 fn table_agrees_with_a_monte_carlo_estimate_within_4_sigma() {
-    for (k, (alpha, mu)) in [(0.3, 0.5), (1.0, 1.0), (0.7, 0.1), (0.01, 0.005), (0.1, 0.02)]
-        .into_iter()
-        .enumerate()
+    for (k, (alpha, mu)) in [
+        (0.3, 0.5),
+        (1.0, 1.0),
+        (0.7, 0.1),
+        (0.01, 0.005),
+        (0.1, 0.02),
+    ]
+    .into_iter()
+    .enumerate()
     {
         let seed = 0x9E37_79B9_7F4A_7C15 ^ k as u64;
         let ggx = CookTorrance::new(Ggx::new(alpha).unwrap(), NoFresnel, SmithHeightCorrelated);
-        let bk = CookTorrance::new(Beckmann::new(alpha).unwrap(), NoFresnel, SmithHeightCorrelated);
+        let bk = CookTorrance::new(
+            Beckmann::new(alpha).unwrap(),
+            NoFresnel,
+            SmithHeightCorrelated,
+        );
         for (dist, (mean, sigma)) in [
             (Distribution::Ggx, mc_albedo(&ggx, mu, seed)),
             (Distribution::Beckmann, mc_albedo(&bk, mu, seed)),

@@ -52,7 +52,11 @@ fn a_plus_b_is_the_directional_albedo() {
             let e = directional_albedo(Distribution::Ggx, alpha, mu).unwrap();
             // Where the rule's E exceeds 1 (by ≤ 3e-6, at grazing) dfg scales it onto 1.
             let want = e.min(1.0);
-            assert!((t.albedo() - want).abs() < 1e-12, "α {alpha} μ {mu}: {} vs {e}", t.albedo());
+            assert!(
+                (t.albedo() - want).abs() < 1e-12,
+                "α {alpha} μ {mu}: {} vs {e}",
+                t.albedo()
+            );
         }
     }
 }
@@ -69,7 +73,11 @@ fn a_and_b_are_non_negative_and_sum_to_at_most_one_down_to_grazing() {
             let e = directional_albedo(Distribution::Ggx, alpha, mu).unwrap();
             assert!(e <= 1.0 + 3e-6, "α {alpha} μ {mu}: E = {e}");
             assert!(t.a >= 0.0 && t.b >= 0.0, "α {alpha} μ {mu}: {t:?}");
-            assert!(t.albedo() <= 1.0 + 1e-6, "α {alpha} μ {mu}: A + B = {}", t.albedo());
+            assert!(
+                t.albedo() <= 1.0 + 1e-6,
+                "α {alpha} μ {mu}: A + B = {}",
+                t.albedo()
+            );
             max_sum = max_sum.max(t.albedo());
         }
     }
@@ -90,7 +98,13 @@ fn smooth_limit_is_a_mirror_with_schlick_fresnel() {
 
 #[test]
 fn bad_input_is_a_typed_error() {
-    for (mu, alpha) in [(-0.1, 0.5), (1.5, 0.5), (f64::NAN, 0.5), (0.5, 0.0), (0.5, 2.0)] {
+    for (mu, alpha) in [
+        (-0.1, 0.5),
+        (1.5, 0.5),
+        (f64::NAN, 0.5),
+        (0.5, 0.0),
+        (0.5, 2.0),
+    ] {
         let e = dfg(mu, alpha).unwrap_err();
         assert!(
             matches!(e, Error::OutOfDomain { .. } | Error::NotFinite { .. }),
@@ -158,7 +172,10 @@ fn f16_texels_are_the_f32_texels_rounded_to_nearest() {
         fill_dfg_f16(n, layout, &mut t16).unwrap();
         for (k, (&x, &h)) in t32.iter().zip(&t16).enumerate() {
             let d = (f64::from(h.to_f32()) - f64::from(x)).abs();
-            for nb in [f16::from_bits(h.to_bits() + 1), f16::from_bits(h.to_bits().wrapping_sub(1))] {
+            for nb in [
+                f16::from_bits(h.to_bits() + 1),
+                f16::from_bits(h.to_bits().wrapping_sub(1)),
+            ] {
                 if nb.is_finite() {
                     let dn = (f64::from(nb.to_f32()) - f64::from(x)).abs();
                     assert!(d <= dn, "texel value {k}: {x} → {h}, but {nb} is nearer");
@@ -190,12 +207,18 @@ fn multiple_scattering_forms_close_the_white_furnace() {
         for mu in [0.02, 0.3, 1.0] {
             let t = dfg(mu, alpha).unwrap();
             let e = t.albedo();
-            assert!((fdez_aguera(1.0, t.a, t.b) - 1.0).abs() < 1e-12, "α {alpha} μ {mu}");
+            assert!(
+                (fdez_aguera(1.0, t.a, t.b) - 1.0).abs() < 1e-12,
+                "α {alpha} μ {mu}"
+            );
             assert!((turquin_factor(1.0, e) * e - 1.0).abs() < 1e-12);
             for f0 in [0.0, 0.04, 0.5, 0.9] {
                 let ss = t.single_scatter(f0);
                 let ms = fdez_aguera(f0, t.a, t.b);
-                assert!(ms >= ss - 1e-15 && ms <= 1.0, "α {alpha} μ {mu} F0 {f0}: {ms} vs {ss}");
+                assert!(
+                    ms >= ss - 1e-15 && ms <= 1.0,
+                    "α {alpha} μ {mu} F0 {f0}: {ms} vs {ss}"
+                );
                 let filament = turquin_factor(f0, e) * ss;
                 assert!(filament >= ss - 1e-15, "α {alpha} μ {mu} F0 {f0}");
             }
@@ -214,11 +237,18 @@ fn analytic_fits_evaluate_their_formulas() {
     let (a32, b32) = env_brdf_approx(0.0f32, 1.0);
     assert!((f64::from(a32) - a).abs() < 1e-6 && (f64::from(b32) - b).abs() < 1e-6);
     let (a8, _) = env_brdf_approx(f32x8::splat(0.0), f32x8::splat(1.0));
-    assert!(a8.to_array().iter().all(|&x| (f64::from(x) - a).abs() < 1e-6));
+    assert!(
+        a8.to_array()
+            .iter()
+            .all(|&x| (f64::from(x) - a).abs() < 1e-6)
+    );
     // Lazarov, g = 1, μ = 1: t = (1/0.96, 0.475, (0.0275 − 0.01 + 0.015 − 0.03)/0.96, 1).
     let (a, b) = lazarov_env_brdf(1.0f64, 1.0);
     let a0 = (-9.28f64).exp2() / 0.96 + (0.0275 - 0.01 + 0.015 - 0.03) / 0.96;
-    assert!((b - a0).abs() < 1e-15 && (a - (1.0 - a0)).abs() < 1e-15, "{a} {b}");
+    assert!(
+        (b - a0).abs() < 1e-15 && (a - (1.0 - a0)).abs() < 1e-15,
+        "{a} {b}"
+    );
 }
 
 /// The fits against the table at `F0 ∈ {0.04, 1}` over `r ∈ [0.2, 1]`, `μ ∈ [0.1, 0.9]`:
@@ -247,6 +277,11 @@ fn analytic_fits_differ_from_the_table_by_their_measured_amounts() {
             }
         }
     }
-    eprintln!("worst |fit − table|: Karis {karis:.3e}, Lazarov {lazarov:.3e}, r ≤ 0.5 {normal:.3e}");
-    assert!(karis < 0.32 && lazarov < 0.43 && normal < 0.19, "{karis} {lazarov} {normal}");
+    eprintln!(
+        "worst |fit − table|: Karis {karis:.3e}, Lazarov {lazarov:.3e}, r ≤ 0.5 {normal:.3e}"
+    );
+    assert!(
+        karis < 0.32 && lazarov < 0.43 && normal < 0.19,
+        "{karis} {lazarov} {normal}"
+    );
 }

@@ -34,7 +34,11 @@ pub const HEADER_LEN: usize = 148;
 /// Bytes per texel of a two-channel format.
 #[must_use]
 pub fn texel_bytes(dxgi_format: u32) -> usize {
-    if dxgi_format == DXGI_R16G16_FLOAT { 4 } else { 8 }
+    if dxgi_format == DXGI_R16G16_FLOAT {
+        4
+    } else {
+        8
+    }
 }
 
 /// The 148-byte header of a `width × height` two-channel texture of `dxgi_format`.
@@ -78,7 +82,11 @@ pub fn parse(bytes: &[u8]) -> Result<Texture, String> {
     }
     let expect = |offset: usize, want: u32, name: &str| {
         let got = word(bytes, offset);
-        if got == want { Ok(()) } else { Err(format!("{name} = {got:#x}, expected {want:#x}")) }
+        if got == want {
+            Ok(())
+        } else {
+            Err(format!("{name} = {got:#x}, expected {want:#x}"))
+        }
     };
     expect(0, 0x2053_4444, "magic")?;
     expect(4, 124, "dwSize")?;
@@ -91,12 +99,27 @@ pub fn parse(bytes: &[u8]) -> Result<Texture, String> {
     expect(140, 1, "arraySize")?;
     let (height, width, format) = (word(bytes, 12), word(bytes, 16), word(bytes, 128));
     if format != DXGI_R16G16_FLOAT && format != DXGI_R32G32_FLOAT {
-        return Err(format!("dxgiFormat {format}: not R16G16_FLOAT or R32G32_FLOAT"));
+        return Err(format!(
+            "dxgiFormat {format}: not R16G16_FLOAT or R32G32_FLOAT"
+        ));
     }
-    expect(20, width * texel_bytes(format) as u32, "dwPitchOrLinearSize")?;
+    expect(
+        20,
+        width * texel_bytes(format) as u32,
+        "dwPitchOrLinearSize",
+    )?;
     let len = width as usize * height as usize * texel_bytes(format);
     if bytes.len() != HEADER_LEN + len {
-        return Err(format!("{} bytes, expected {}", bytes.len(), HEADER_LEN + len));
+        return Err(format!(
+            "{} bytes, expected {}",
+            bytes.len(),
+            HEADER_LEN + len
+        ));
     }
-    Ok(Texture { width, height, dxgi_format: format, data: bytes[HEADER_LEN..].to_vec() })
+    Ok(Texture {
+        width,
+        height,
+        dxgi_format: format,
+        data: bytes[HEADER_LEN..].to_vec(),
+    })
 }

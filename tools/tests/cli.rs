@@ -174,9 +174,21 @@ fn dfg_rejects_bad_sizes_formats_and_layouts() {
     let dir = scratch("dfg-unwritable");
     let file = dir.join("file");
     std::fs::write(&file, b"x").unwrap();
-    let out = run(exe, &["--size", "16", "--out", file.join("t.dds").to_str().unwrap()]);
+    let out = run(
+        exe,
+        &[
+            "--size",
+            "16",
+            "--out",
+            file.join("t.dds").to_str().unwrap(),
+        ],
+    );
     assert_eq!(out.status.code(), Some(1));
-    assert!(text(&out.stderr).contains("cannot create"), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("cannot create"),
+        "{}",
+        text(&out.stderr)
+    );
 }
 
 /// The DDS files parse back (every header field of `brdf_tools::dds`) to the texels the

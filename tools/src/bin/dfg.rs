@@ -24,7 +24,7 @@ USAGE:
     cargo run --release -p brdf-tools --bin dfg [-- OPTIONS]
 
 OPTIONS:
-    --size N          texels per side, 16 to 512 (default 128; about 1 ms per texel)
+    --size N          texels per side, 16 to 512 (default 128; about 0.7 ms per texel)
     --format F        f16 (DXGI R16G16_FLOAT, default) or f32 (DXGI R32G32_FLOAT)
     --layout L        split-sum: (A, B), albedo F0*R + G (default);
                       multiscatter: (B, A + B), albedo mix(R, G, F0) (Filament's layout)
@@ -38,7 +38,11 @@ fn fail(msg: &str) -> ! {
 }
 
 fn main() {
-    let args = brdf_tools::Args::parse(&["--size", "--format", "--layout", "--out", "--png"], &[], USAGE);
+    let args = brdf_tools::Args::parse(
+        &["--size", "--format", "--layout", "--out", "--png"],
+        &[],
+        USAGE,
+    );
     let n: usize = match args.value("--size").map(str::parse::<usize>) {
         None => 128,
         Some(Ok(n)) if (16..=512).contains(&n) => n,
@@ -52,21 +56,24 @@ fn main() {
     let layout = match args.value("--layout") {
         None | Some("split-sum") => DfgLayout::SplitSum,
         Some("multiscatter") => DfgLayout::Multiscatter,
-        Some(other) => fail(&format!("--layout takes split-sum or multiscatter, not `{other}`")),
+        Some(other) => fail(&format!(
+            "--layout takes split-sum or multiscatter, not `{other}`"
+        )),
     };
-    let out = args
-        .value("--out")
-        .map_or_else(|| brdf_tools::default_out_dir().join("dfg.dds"), PathBuf::from);
+    let out = args.value("--out").map_or_else(
+        || brdf_tools::default_out_dir().join("dfg.dds"),
+        PathBuf::from,
+    );
     let png = args
         .value("--png")
         .map_or_else(|| out.with_extension("png"), PathBuf::from);
     // Fail on an unwritable destination before the (long) computation.
     for path in [&out, &png] {
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            if let Err(e) = brdf_tools::prepare_out_dir(dir) {
-                eprintln!("error: {e}");
-                std::process::exit(1);
-            }
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
+            && let Err(e) = brdf_tools::prepare_out_dir(dir)
+        {
+            eprintln!("error: {e}");
+            std::process::exit(1);
         }
     }
 
@@ -76,9 +83,15 @@ fn main() {
         // What `fill_dfg_f16` computes (each f32 texel rounded to the nearest f16), without
         // integrating the table a second time.
         let h = values.iter().map(|&x| half::f16::from_f32(x));
-        (dds::DXGI_R16G16_FLOAT, h.flat_map(half::f16::to_le_bytes).collect())
+        (
+            dds::DXGI_R16G16_FLOAT,
+            h.flat_map(half::f16::to_le_bytes).collect(),
+        )
     } else {
-        (dds::DXGI_R32G32_FLOAT, values.iter().flat_map(|x| x.to_le_bytes()).collect())
+        (
+            dds::DXGI_R32G32_FLOAT,
+            values.iter().flat_map(|x| x.to_le_bytes()).collect(),
+        )
     };
     let mut file = dds::header(n as u32, n as u32, format);
     file.extend(bytes);
@@ -94,12 +107,22 @@ fn main() {
     for (p, px) in pixmap.pixels_mut().iter_mut().enumerate() {
         let (x, y) = (p % side as usize / scale, p / side as usize / scale);
         let k = 2 * (y * n + x);
-        *px = tiny_skia::PremultipliedColorU8::from_rgba(byte(values[k]), byte(values[k + 1]), 0, 255)
-            .expect("opaque");
+        *px = tiny_skia::PremultipliedColorU8::from_rgba(
+            byte(values[k]),
+            byte(values[k + 1]),
+            0,
+            255,
+        )
+        .expect("opaque");
     }
     if let Err(e) = brdf_tools::save_png(&pixmap, &png) {
         eprintln!("error: {e}");
         std::process::exit(1);
     }
-    println!("wrote {} ({n} × {n}, {}) and {}", out.display(), if f16 { "R16G16_FLOAT" } else { "R32G32_FLOAT" }, png.display());
+    println!(
+        "wrote {} ({n} × {n}, {}) and {}",
+        out.display(),
+        if f16 { "R16G16_FLOAT" } else { "R32G32_FLOAT" },
+        png.display()
+    );
 }

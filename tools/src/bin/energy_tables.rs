@@ -7,8 +7,7 @@
 //! ```
 
 use brdf::energy::{
-    ALBEDO_TABLE_ALPHA, ALBEDO_TABLE_MU, Distribution, albedo_table_node,
-    average_albedo_table_node,
+    ALBEDO_TABLE_ALPHA, ALBEDO_TABLE_MU, Distribution, albedo_table_node, average_albedo_table_node,
 };
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -60,7 +59,10 @@ fn source() -> String {
         "// {ALBEDO_TABLE_ALPHA} rows (roughness) of {ALBEDO_TABLE_MU} columns (view) per `E` table."
     )
     .unwrap();
-    for (dist, prefix) in [(Distribution::Ggx, "GGX"), (Distribution::Beckmann, "BECKMANN")] {
+    for (dist, prefix) in [
+        (Distribution::Ggx, "GGX"),
+        (Distribution::Beckmann, "BECKMANN"),
+    ] {
         let e: Vec<f32> = (0..ALBEDO_TABLE_ALPHA)
             .flat_map(|j| (0..ALBEDO_TABLE_MU).map(move |i| albedo_table_node(dist, i, j)))
             .collect();
@@ -86,7 +88,10 @@ fn main() {
         match std::fs::read_to_string(&path) {
             Ok(old) if old == text => println!("{}: up to date", path.display()),
             Ok(_) => {
-                eprintln!("error: {} differs from the regenerated tables", path.display());
+                eprintln!(
+                    "error: {} differs from the regenerated tables",
+                    path.display()
+                );
                 std::process::exit(1);
             }
             Err(e) => {

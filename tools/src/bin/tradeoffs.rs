@@ -1663,15 +1663,20 @@ fn split_sum_report() {
     println!("|---|---|---:|---:|---|");
     type Fit = fn(f64, f64) -> (f64, f64);
     let fits: [(&str, Fit, bool); 2] = [
-        ("Karis 2014 `EnvBRDFApprox`", |r, mu| env_brdf_approx(r, mu), false),
+        (
+            "Karis 2014 `EnvBRDFApprox`",
+            |r, mu| env_brdf_approx(r, mu),
+            false,
+        ),
         ("Lazarov 2013", |r, mu| lazarov_env_brdf(1.0 - r, mu), true),
     ];
     for (name, fit, saturate) in fits {
-        let quantities: [(&str, Box<dyn Fn(f64, f64) -> f64>); 4] = [
-            ("A", Box::new(|a, _| a)),
-            ("B", Box::new(|_, b| b)),
-            ("F0·A + B, F0 = 0.04", Box::new(|a, b| 0.04 * a + b)),
-            ("F0·A + B, F0 = 1", Box::new(|a, b| a + b)),
+        type Quantity = fn(f64, f64) -> f64;
+        let quantities: [(&str, Quantity); 4] = [
+            ("A", |a, _| a),
+            ("B", |_, b| b),
+            ("F0·A + B, F0 = 0.04", |a, b| 0.04 * a + b),
+            ("F0·A + B, F0 = 1", |a, b| a + b),
         ];
         for (k, (q, f)) in quantities.iter().enumerate() {
             let (mut max, mut sum2, mut at) = (0.0f64, 0.0, (0.0, 0.0));
