@@ -2,8 +2,8 @@
 //! bit from the quadrature, the interpolation against the direct quadrature over the whole
 //! domain, lanes against scalars, and a Monte-Carlo estimate with the crate's samplers.
 //!
-//! The normal run checks a deterministic subset (a few seconds at the test profile's
-//! opt-level 2); the full regeneration and the full-domain error sweep are `#[ignore]`d and
+//! The normal run checks a deterministic subset (about 20 s at the test profile's
+//! opt-level 2, on an AMD EPYC (Zen 4)); the full regeneration and the full-domain error sweep are `#[ignore]`d and
 //! run by CI in release:
 //! `cargo test --release --all-features --test energy_tables -- --ignored`.
 
@@ -59,15 +59,15 @@ fn check_rows(rows: impl Iterator<Item = usize> + Clone) {
     }
 }
 
-/// A deterministic subset: the first and last rows and every 9th row (8 of 64), all
+/// A deterministic subset: rows 0, 21, 42 and 63 (the first, the last and two between), all
 /// columns, both distributions.
 #[test]
 fn shipped_tables_match_the_generator_on_a_subset_of_rows() {
-    check_rows((0..ALBEDO_TABLE_ALPHA).filter(|j| j % 9 == 0 || *j == ALBEDO_TABLE_ALPHA - 1));
+    check_rows((0..ALBEDO_TABLE_ALPHA).filter(|j| j % 21 == 0));
 }
 
 #[test]
-#[ignore = "full regeneration (~1 min in release); CI runs it with --ignored"]
+#[ignore = "full regeneration (about 1 min of CPU in release); CI runs it with --ignored"]
 fn shipped_tables_match_the_generator_everywhere() {
     check_rows(0..ALBEDO_TABLE_ALPHA);
 }
@@ -117,7 +117,7 @@ fn interpolated_albedo_is_within_1e_3_of_the_quadrature_on_a_subset() {
 }
 
 #[test]
-#[ignore = "full-domain sweep (~5 min in release); CI runs it with --ignored"]
+#[ignore = "full-domain sweep (minutes; 30 min at opt-level 2 on a loaded 2-core machine); CI runs it with --ignored"]
 fn interpolated_albedo_is_within_1e_3_of_the_quadrature_everywhere() {
     for dist in DISTS {
         let points = [(0.5, 0.5), (0.0, 0.5), (0.5, 0.0)];
@@ -132,7 +132,7 @@ fn interpolated_albedo_is_within_1e_3_of_the_quadrature_everywhere() {
 fn interpolated_average_albedo_is_within_1e_3_of_the_quadrature() {
     for dist in DISTS {
         let mut worst = (0.0, 0.0);
-        for j in (0..ALBEDO_TABLE_ALPHA - 1).filter(|j| *j < 4 || j % 6 == 5) {
+        for j in [0, 1, 2, 20, 40, 62] {
             let alpha = alpha_at((j as f64 + 0.5) / (ALBEDO_TABLE_ALPHA - 1) as f64);
             let err =
                 (average_albedo_table(dist, alpha) - average_albedo(dist, alpha).unwrap()).abs();
