@@ -1367,6 +1367,7 @@ macro_rules! on_any_fresnel {
         }
     };
 }
+pub(crate) use on_any_fresnel;
 
 /// `From` each wrapped term.
 macro_rules! any_fresnel_from {

@@ -85,7 +85,7 @@
 use alloc::{boxed::Box, vec::Vec};
 
 use crate::fresnel::AnyFresnel;
-use crate::masking::AnyMasking;
+use crate::masking::{AnyMasking, SmithHeightCorrelated};
 #[cfg(feature = "alloc")]
 use crate::models::Layered;
 // Every model, so that the dispatcher list below names them without an import each.
@@ -401,6 +401,12 @@ models! {
     Lafortune3(Lafortune<R, 3, 3>),
     /// [`KajiyaKay`].
     KajiyaKay(KajiyaKay<R, 3>) => kajiya_kay::KajiyaKay(KajiyaKayDesc),
+    /// [`KullaConty`] over a runtime Cook-Torrance with height-correlated Smith masking.
+    KullaConty(KullaConty<CookTorrance<R, AnyNdf<R>, AnyFresnel<R>, SmithHeightCorrelated>, R, 3>)
+        => multiscatter::KullaConty(KullaContyDesc),
+    /// [`Turquin`] over a runtime Cook-Torrance with height-correlated Smith masking.
+    Turquin(Turquin<CookTorrance<R, AnyNdf<R>, AnyFresnel<R>, SmithHeightCorrelated>, R, 3>)
+        => multiscatter::Turquin(TurquinDesc),
     // The compositions (their runtime variants `Sum` and `Layered` are the macro's own).
     => layered::Sum(SumDesc),
     => layered::Layered(LayeredDesc),

@@ -54,7 +54,7 @@ pub(crate) mod kajiya_kay;
 pub(crate) mod lafortune;
 pub(crate) mod lambert;
 pub(crate) mod layered;
-mod multiscatter;
+pub(crate) mod multiscatter;
 pub(crate) mod oren_nayar;
 pub(crate) mod shirley_diffuse;
 pub(crate) mod ward;
