@@ -11,7 +11,7 @@ use brdf::masking::{
     HammonApprox, Implicit, Kelemen, Masking, SchlickGgx, SmithHeightCorrelated, SmithSeparable,
     SmithSeparableWalter, VCavity,
 };
-use brdf::ndf::{AshikhminShirley, Beckmann, BlinnPhong, Ggx, Ndf, SmithLambda};
+use brdf::ndf::{AshikhminShirleyLobe, Beckmann, BlinnPhong, Ggx, Ndf, SmithLambda};
 use brdf::real::Splat;
 use brdf::vec3::half_vector;
 use brdf::{Real, Scalar, Vec3, f32x4, f32x8, f32x16, f64x4};
@@ -146,7 +146,7 @@ fn ndfs(c: &mut Criterion) {
         c,
         "d/ashikhmin_shirley",
         &p,
-        n = AshikhminShirley::<S>::new(10.0, 500.0)
+        n = AshikhminShirleyLobe::<S>::new(10.0, 500.0)
             .unwrap()
             .splat::<R>(),
         |wi, wo, wm| n.d(wm)

@@ -117,8 +117,8 @@ fn model_benches(c: &mut Criterion) {
         [s(0.04)]
     )
     .unwrap());
-    bench_model!(c, "blinn_phong_classic", &p, |s| {
-        BlinnPhongClassic::new([s(0.2)], s(0.5), [s(0.04)], s(64.0)).unwrap()
+    bench_model!(c, "classic_blinn_phong", &p, |s| {
+        ClassicBlinnPhong::new([s(0.2)], s(0.5), [s(0.04)], s(64.0)).unwrap()
     });
     bench_model!(c, "normalized_blinn_phong_seed", &p, |s| {
         NormalizedBlinnPhong::new(

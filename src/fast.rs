@@ -633,7 +633,7 @@ impl PowFn for FastPow {
 
 /// How a model takes the length of its half vector `h = wi + wo` and normalizes it —
 /// `|h| = √(h·h)` and `1/|h|` — chosen at compile time (a type parameter of
-/// [`crate::models::CookTorrance`] and [`crate::models::BlinnPhongClassic`]), so a scene pays
+/// [`crate::models::CookTorrance`] and [`crate::models::ClassicBlinnPhong`]), so a scene pays
 /// for the accuracy it asks for.
 ///
 /// * [`ExactSqrt`]: the correctly rounded `√x` and `1/√x` (a square root and a division).

@@ -13,7 +13,7 @@
 //! | [`Beckmann`] | `exp(−(x²/αx² + y²/αy²)/z²) / (π αx αy z⁴)` | `alpha_x, alpha_y ∈ [MIN_ALPHA, MAX_ALPHA]` |
 //! | [`Ggx`] (Trowbridge-Reitz) | `1 / (π αx αy (x²/αx² + y²/αy² + z²)²)` | `alpha_x, alpha_y ∈ [MIN_ALPHA, MAX_ALPHA]` |
 //! | [`GgxIsotropic`] | the same with `αx = αy = α`, specialized | `alpha ∈ [MIN_ALPHA, MAX_ALPHA]` |
-//! | [`AshikhminShirley`] | `√((nu + 2)(nv + 2))/(2π) cos^e θm`, `e = (nu x² + nv y²)/(x² + y²)` | `nu, nv ∈ [0, MAX_SHININESS]` |
+//! | [`AshikhminShirleyLobe`] | `√((nu + 2)(nv + 2))/(2π) cos^e θm`, `e = (nu x² + nv y²)/(x² + y²)` | `nu, nv ∈ [0, MAX_SHININESS]` |
 //!
 //! (`wm = (x, y, z)` in the local frame, `z = cos θm`.) Each type is generic over
 //! [`Real`] and stores its per-material constants (`1/αx²`, `1/(π αx αy)`, the normalization
@@ -1116,7 +1116,7 @@ splat_ndf!(BlinnPhong { shininess, norm });
 
 /// The Ashikhmin-Shirley exponent `e = (nu x² + nv y²)/(x² + y²)` of a unit half vector
 /// `wm = (x, y, z)`; `(nu + nv)/2` where `x² + y² ≤ 1e-30` (at the pole any `e` gives
-/// `cos^e θ = 1`). Shared by [`AshikhminShirley`] and the model of the same name.
+/// `cos^e θ = 1`). Shared by [`AshikhminShirleyLobe`] and the model [`crate::models::AshikhminShirley`].
 #[inline(always)]
 pub(crate) fn ashikhmin_shirley_exponent<R: Real>(nu: R, nv: R, wm: Vec3<R>) -> R {
     let (x2, y2) = (wm.x * wm.x, wm.y * wm.y);
@@ -1141,7 +1141,7 @@ pub(crate) fn ashikhmin_shirley_exponent<R: Real>(nu: R, nv: R, wm: Vec3<R>) -> 
 ///
 /// **The paper's factor.** Ashikhmin and Shirley use `√((nu + 1)(nv + 1))/(2π)`, which by the
 /// same integral normalizes the *half-vector density* `p(wm)` (`∫ p dωm = 1`, exact; see
-/// [`AshikhminShirley::half_vector_pdf`]), not the NDF: with it
+/// [`AshikhminShirleyLobe::half_vector_pdf`]), not the NDF: with it
 /// `∫ D cos θm dωm = √((nu + 1)(nv + 1)/((nu + 2)(nv + 2)))` — 0.5 at `nu = nv = 0`,
 /// 0.990 at 100, 0.9990 at 1000. (The approximate normalization in their paper is that of
 /// the whole BRDF, whose `1/((h·k) max(cos θi, cos θo))` factor is not exactly integrable.)
@@ -1155,13 +1155,13 @@ pub(crate) fn ashikhmin_shirley_exponent<R: Real>(nu: R, nv: R, wm: Vec3<R>) -> 
 /// # Examples
 ///
 /// ```
-/// use brdf::{Vec3, ndf::{AshikhminShirley, Ndf}};
-/// let a = AshikhminShirley::new(10.0_f64, 1000.0).unwrap();
+/// use brdf::{Vec3, ndf::{AshikhminShirleyLobe, Ndf}};
+/// let a = AshikhminShirleyLobe::new(10.0_f64, 1000.0).unwrap();
 /// let peak = a.d(Vec3::new(0.0, 0.0, 1.0));
 /// assert!((peak - (12.0f64 * 1002.0).sqrt() / (2.0 * core::f64::consts::PI)).abs() < 1e-12);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AshikhminShirley<R> {
+pub struct AshikhminShirleyLobe<R> {
     nu: R,
     nv: R,
     /// `√((nu + 2)(nv + 2))/(2π)`.
@@ -1170,7 +1170,7 @@ pub struct AshikhminShirley<R> {
     pdf_norm: R,
 }
 
-impl<S: Scalar> AshikhminShirley<S> {
+impl<S: Scalar> AshikhminShirleyLobe<S> {
     /// Lobe with exponents `nu` (tangent) and `nv` (bitangent), each in `[0, 2·10⁸]`.
     ///
     /// # Errors
@@ -1181,7 +1181,7 @@ impl<S: Scalar> AshikhminShirley<S> {
     }
 }
 
-impl<R: Real> AshikhminShirley<R> {
+impl<R: Real> AshikhminShirleyLobe<R> {
     /// One (possibly different) pair of exponents per lane, validated as in [`Self::new`].
     ///
     /// # Errors
@@ -1233,14 +1233,14 @@ impl<R: Real> AshikhminShirley<R> {
     }
 }
 
-impl<R: Real> Ndf<R> for AshikhminShirley<R> {
+impl<R: Real> Ndf<R> for AshikhminShirleyLobe<R> {
     #[inline(always)]
     fn d(&self, wm: Vec3<R>) -> R {
         self.norm * self.lobe(wm)
     }
 }
 
-splat_ndf!(AshikhminShirley {
+splat_ndf!(AshikhminShirleyLobe {
     nu,
     nv,
     norm,

@@ -1575,7 +1575,7 @@ fn other_models() -> Vec<Case> {
     ));
     v.push(case(
         "blinn-phong classic s=20",
-        BlinnPhongClassic::<f64, 1>::new([0.3], 0.5, [0.04], 20.0).unwrap(),
+        ClassicBlinnPhong::<f64, 1>::new([0.3], 0.5, [0.04], 20.0).unwrap(),
         vec![],
     ));
     for s in [1.0, 50.0] {

@@ -290,8 +290,8 @@ fn zoo<S: Scalar>(p: &P) -> Zoo<S> {
     let mut z: Zoo<S> = Vec::new();
     z.push(("lambert", Box::new(Lambert::new([s(u[0])]).unwrap())));
     z.push((
-        "blinn_phong_classic",
-        Box::new(BlinnPhongClassic::new([s(u[0])], s(u[1]), [s(u[2])], s(exponent(u[3]))).unwrap()),
+        "classic_blinn_phong",
+        Box::new(ClassicBlinnPhong::new([s(u[0])], s(u[1]), [s(u[2])], s(exponent(u[3]))).unwrap()),
     ));
     for norm in [
         Normalization::TriAceExact,
@@ -502,7 +502,7 @@ proptest! {
     fn reciprocity_where_declared(p in params(), wi in common::direction(), wo in common::direction()) {
         for (name, m) in zoo::<f64>(&p) {
             let declared = m.properties().reciprocity == Reciprocity::Reciprocal;
-            let expected_non = matches!(name, "blinn_phong_classic" | "nbp_spec_seed" | "nbp_seed" | "coupled_lambert" | "kajiya_kay" | "kajiya_kay_norm");
+            let expected_non = matches!(name, "classic_blinn_phong" | "nbp_spec_seed" | "nbp_seed" | "coupled_lambert" | "kajiya_kay" | "kajiya_kay_norm");
             prop_assert_eq!(declared, !expected_non, "{} declaration", name);
             if declared {
                 let (a, b) = (m.eval(wi, wo)[0], m.eval(wo, wi)[0]);
@@ -530,7 +530,7 @@ proptest! {
         let m = NormalizedBlinnPhongSpecular::<f64, 1>::new(u[1], [u[2]], exponent(u[3]) * 1e-2, Normalization::TriAceExact).unwrap();
         let (a, b) = (m.eval(wi, wo)[0], m.eval(wo, wi)[0]);
         prop_assert!((a * wi.z - b * wo.z).abs() <= 1e-12 * (a * wi.z).max(1e-300), "{a} {b}");
-        let c = BlinnPhongClassic::<f64, 1>::new([u[0]], u[1], [u[2]], exponent(u[3]) * 1e-2).unwrap();
+        let c = ClassicBlinnPhong::<f64, 1>::new([u[0]], u[1], [u[2]], exponent(u[3]) * 1e-2).unwrap();
         let (a, b) = (c.eval(wi, wo)[0], c.eval(wo, wi)[0]);
         let out = c.out(wi, wo)[0] - u[0] * wi.z; // the specular part of Out, symmetric
         prop_assert!((a - b - out * (1.0 / wi.z - 1.0 / wo.z)).abs() <= 1e-9 * a.max(b), "{a} {b}");
@@ -693,7 +693,7 @@ fn normalized_blinn_phong_energy() {
         ));
     }
     // Classic engine form: π R_d alone exceeds 1.
-    let c = BlinnPhongClassic::<f64, 1>::new([0.5], 0.0, [0.0], 10.0).unwrap();
+    let c = ClassicBlinnPhong::<f64, 1>::new([0.5], 0.0, [0.0], 10.0).unwrap();
     let a = albedo_view(&ch0(&c), dir(30.0, 0.0));
     assert!((a - 0.5 * PI).abs() < 1e-6, "{a}");
 }
@@ -1010,7 +1010,7 @@ fn constructors_reject_bad_parameters() {
         })
     ));
     assert!(matches!(
-        BlinnPhongClassic::<f64, 1>::new([0.5], 0.5, [0.0], -1.0),
+        ClassicBlinnPhong::<f64, 1>::new([0.5], 0.5, [0.0], -1.0),
         Err(Error::OutOfDomain {
             param: "shininess",
             ..

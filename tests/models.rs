@@ -40,8 +40,8 @@ proptest! {
 
     /// Engine Blinn-Phong: f · cos θi is the engine's Out, written with angles.
     #[test]
-    fn blinn_phong_classic_is_out_over_cos((wi, wo) in dir_pair(), s in 0.0f64..2000.0, rd in 0.0f64..1.0, f0 in 0.0f64..1.0) {
-        let m = BlinnPhongClassic::<f64, 1>::new([rd], 0.7, [f0], s).unwrap();
+    fn classic_blinn_phong_is_out_over_cos((wi, wo) in dir_pair(), s in 0.0f64..2000.0, rd in 0.0f64..1.0, f0 in 0.0f64..1.0) {
+        let m = ClassicBlinnPhong::<f64, 1>::new([rd], 0.7, [f0], s).unwrap();
         let h = half(wi, wo);
         let th = h.z.min(1.0).acos();
         let f = f0 + (1.0 - f0) * (1.0 - wo.dot(h)).powi(5);
@@ -265,7 +265,7 @@ proptest! {
             if wi.z <= 0.0 || wo.z <= 0.0 {
                 prop_assert!(x == 0.0 && y == 0.0);
             }
-            let bp = BlinnPhongClassic::<f32, 1>::new([0.0], 1.0, [0.04], s).unwrap();
+            let bp = ClassicBlinnPhong::<f32, 1>::new([0.0], 1.0, [0.04], s).unwrap();
             let (x, y, p) = pair(&bp, &bp.with_sqrt::<Q>(), wi, wo);
             let u = f64::from(f32::EPSILON) / 2.0;
             let bound = (f64::from(s) + 3.0) * (e + 2.0 * u);
@@ -555,8 +555,8 @@ fn lanes_diffuse_models() {
 
 #[test]
 fn lanes_blinn_phong() {
-    lanes!("blinn_phong_classic", ulp = 32, abs = 1e-30, |s, p| {
-        BlinnPhongClassic::new([s(p[0])], s(p[1]), [s(p[2])], s(exponent(p[3]))).unwrap()
+    lanes!("classic_blinn_phong", ulp = 32, abs = 1e-30, |s, p| {
+        ClassicBlinnPhong::new([s(p[0])], s(p[1]), [s(p[2])], s(exponent(p[3]))).unwrap()
     });
     lanes!("nbp_seed_exact", ulp = 32, abs = 1e-30, |s, p| {
         NormalizedBlinnPhong::new(

@@ -5,7 +5,7 @@ mod common;
 use approx::assert_abs_diff_eq;
 
 use brdf::ndf::{
-    self, AshikhminShirley, Beckmann, BlinnPhong, Ggx, GgxIsotropic, Ndf, ProjectedAlpha,
+    self, AshikhminShirleyLobe, Beckmann, BlinnPhong, Ggx, GgxIsotropic, Ndf, ProjectedAlpha,
     SmithLambda,
 };
 use brdf::real::Splat;
@@ -152,7 +152,7 @@ fn ashikhmin_shirley_is_exactly_normalized_and_the_paper_factor_is_not() {
         (1e3, 1e3),
         (1e2, 1e4),
     ] {
-        let a = AshikhminShirley::<f64>::new(nu, nv).unwrap();
+        let a = AshikhminShirleyLobe::<f64>::new(nu, nv).unwrap();
         let (ax, ay) = ((2.0 / (nu + 2.0)).sqrt(), (2.0 / (nv + 2.0)).sqrt());
         let i = slope_projected_integral(|m| a.d(m), ax, ay);
         assert!((i - 1.0).abs() < 1e-8, "AS ({nu}, {nv}): ∫D cos = {i}");
@@ -486,7 +486,7 @@ fn constructors_validate() {
     );
     assert!(BlinnPhong::<f64>::new(-1e-9).is_err() && BlinnPhong::<f64>::new(3e8).is_err());
     assert!(matches!(
-        AshikhminShirley::<f32>::new(1.0, f32::NAN),
+        AshikhminShirleyLobe::<f32>::new(1.0, f32::NAN),
         Err(Error::NotFinite { param: "nv" })
     ));
     let lanes = brdf::f32x4::new([0.1, 0.2, 0.0, 0.4]);
@@ -562,7 +562,7 @@ where
         let b = Beckmann::new(alpha).unwrap().splat::<R>();
         let ba = Beckmann::anisotropic(of(1.0), alpha).unwrap().splat::<R>();
         let bp = BlinnPhong::new(s).unwrap().splat::<R>();
-        let asx = AshikhminShirley::new(s, of(10.0)).unwrap().splat::<R>();
+        let asx = AshikhminShirleyLobe::new(s, of(10.0)).unwrap().splat::<R>();
         vec![
             ("ggx d", g.d(w), true),
             ("ggx aniso d", ga.d(w), true),
@@ -624,7 +624,10 @@ fn degenerate_and_lower_hemisphere_directions_give_zero_not_nan() {
         assert_eq!(Ggx::<f32>::new(1e-4).unwrap().d(w), 0.0);
         assert_eq!(Beckmann::<f32>::new(1e-4).unwrap().d(w), 0.0);
         assert_eq!(BlinnPhong::<f32>::new(0.0).unwrap().d(w), 0.0);
-        assert_eq!(AshikhminShirley::<f32>::new(0.0, 5.0).unwrap().d(w), 0.0);
+        assert_eq!(
+            AshikhminShirleyLobe::<f32>::new(0.0, 5.0).unwrap().d(w),
+            0.0
+        );
     }
     all_ndfs_finite::<f32>(zero, 1e-4, 0.0).unwrap();
     all_ndfs_finite::<f64>(Vec3::new(0.0, 0.0, 0.0), 1e-4, 1e4).unwrap();
@@ -738,9 +741,9 @@ fn simd_lanes_match_scalar() {
         fn(x, y, z, s, t) { BlinnPhong::<R>::from_lanes(s).unwrap().d(Vec3::new(x, y, z)) }),
     ));
     report.push(("ashikhmin-shirley d", common::assert_lanes_match!("ashikhmin-shirley d", ulp = 32, abs = 1e-30, &shin,
-        fn(x, y, z, nu, nv) { AshikhminShirley::<R>::from_lanes(nu, nv).unwrap().d(Vec3::new(x, y, z)) })));
+        fn(x, y, z, nu, nv) { AshikhminShirleyLobe::<R>::from_lanes(nu, nv).unwrap().d(Vec3::new(x, y, z)) })));
     report.push(("ashikhmin-shirley pdf", common::assert_lanes_match!("ashikhmin-shirley pdf", ulp = 32, abs = 1e-30, &shin,
-        fn(x, y, z, nu, nv) { AshikhminShirley::<R>::from_lanes(nu, nv).unwrap().half_vector_pdf(Vec3::new(x, y, z)) })));
+        fn(x, y, z, nu, nv) { AshikhminShirleyLobe::<R>::from_lanes(nu, nv).unwrap().half_vector_pdf(Vec3::new(x, y, z)) })));
 
     // Conversions and Blinn 1977 forms.
     let scalars: Vec<[f64; 2]> = [

@@ -10,7 +10,7 @@ mod common;
 use brdf::fresnel::Schlick;
 use brdf::masking::{SmithHeightCorrelated, VCavity};
 use brdf::models::CookTorrance;
-use brdf::ndf::{AnyNdf, AshikhminShirley, Beckmann, BlinnPhong, Ggx, GgxIsotropic, erf};
+use brdf::ndf::{AnyNdf, AshikhminShirleyLobe, Beckmann, BlinnPhong, Ggx, GgxIsotropic, erf};
 use brdf::real::Splat;
 use brdf::sampling::{
     BoundedVisibleNormals, FullDistribution, NormalSampler, SampleNdf, SphericalCaps,
@@ -211,7 +211,11 @@ fn blinn_phong_and_ashikhmin_shirley_ndfs_chi2() {
         (100.0, 10.0, 75.0, 200.0),
         (0.0, 5.0, 0.0, 0.0),
     ] {
-        let m = CookTorrance::new(AshikhminShirley::new(nu, nv).unwrap(), schlick(), VCavity);
+        let m = CookTorrance::new(
+            AshikhminShirleyLobe::new(nu, nv).unwrap(),
+            schlick(),
+            VCavity,
+        );
         check_chi2(
             "ashikhmin-shirley",
             &m,
@@ -444,9 +448,13 @@ fn extremes_on<R: brdf::Scalar>() {
     for sh in [0.0, 1.0, brdf::ndf::MAX_SHININESS] {
         let sh = R::from_f64(sh);
         let bp = CookTorrance::new(BlinnPhong::new(sh).unwrap(), fr, VCavity);
-        let as1 = CookTorrance::new(AshikhminShirley::new(sh, R::zero()).unwrap(), fr, VCavity);
+        let as1 = CookTorrance::new(
+            AshikhminShirleyLobe::new(sh, R::zero()).unwrap(),
+            fr,
+            VCavity,
+        );
         let as2 = CookTorrance::new(
-            AshikhminShirley::new(R::from_f64(3.0), sh).unwrap(),
+            AshikhminShirleyLobe::new(R::from_f64(3.0), sh).unwrap(),
             fr,
             VCavity,
         );
@@ -528,7 +536,7 @@ fn lane_body<R: Real>(ox: R, oz: R, u0: R, u1: R, a: R, kind: usize, which: usiz
             which,
         ),
         _ => strategy_out::<R, _, FullDistribution>(
-            &AshikhminShirley::from_lanes(R::from_f64(1.0) / a, R::from_f64(10.0)).unwrap(),
+            &AshikhminShirleyLobe::from_lanes(R::from_f64(1.0) / a, R::from_f64(10.0)).unwrap(),
             wo,
             u,
             which,

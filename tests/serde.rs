@@ -8,13 +8,13 @@
 
 mod common;
 
+use brdf::ior::Preset;
 use brdf::masking::AnyMasking;
 use brdf::material::{
-    AshikhminShirleyDesc, BlinnPhongClassicDesc, CookTorranceDesc, DenominatorDesc, FresnelDesc,
+    AshikhminShirleyDesc, ClassicBlinnPhongDesc, CookTorranceDesc, DenominatorDesc, FresnelDesc,
     KajiyaKayDesc, LafortuneDesc, LambertDesc, LayeredDesc, LobeDesc, MAX_DEPTH, MAX_TERMS,
     Material, MaterialDesc, MaterialError, NdfDesc, NormalizationDesc, NormalizedBlinnPhongDesc,
-    OrenNayarDesc, Preset, Reflectance, Rgb, ShirleyDiffuseDesc, SumDesc, WardDesc,
-    WardNormalizationDesc,
+    OrenNayarDesc, Reflectance, Rgb, ShirleyDiffuseDesc, SumDesc, WardDesc, WardNormalizationDesc,
 };
 use brdf::{Brdf, Vec3};
 use proptest::prelude::*;
@@ -27,7 +27,7 @@ fn every_model() -> Vec<MaterialDesc> {
         MaterialDesc::Lambert(LambertDesc {
             albedo: Rgb([0.8, 0.5, 0.2]),
         }),
-        MaterialDesc::BlinnPhongClassic(BlinnPhongClassicDesc {
+        MaterialDesc::ClassicBlinnPhong(ClassicBlinnPhongDesc {
             rd: Rgb([0.1, 0.05, 0.02]),
             rs: 0.5,
             f0: Reflectance::Value(Rgb([0.04; 3])),
@@ -459,7 +459,7 @@ fn non_finite_values_are_rejected_naming_the_field() {
         &["`oren_nayar`", "`sigma`", "1e300", "does not fit in f32"],
     );
     toml_rejects(
-        "model = \"blinn_phong_classic\"\nrd = 0.1\nrs = 1\nf0 = 0.04\nshininess = 1e300",
+        "model = \"classic_blinn_phong\"\nrd = 0.1\nrs = 1\nf0 = 0.04\nshininess = 1e300",
         &["`shininess`", "1e300", "outside its domain [0, 2e8 − 2]"],
     );
 }
@@ -559,7 +559,7 @@ fn unknown_and_missing_fields_are_rejected() {
         &["missing field `sigma`"],
     );
     toml_rejects(
-        "model = \"blinn_phong_classic\"\nrd = 0.1\nrs = 1\nf0 = 0.04",
+        "model = \"classic_blinn_phong\"\nrd = 0.1\nrs = 1\nf0 = 0.04",
         &["missing field `shininess`"],
     );
     toml_rejects("", &["missing field `model`"]);

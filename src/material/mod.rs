@@ -109,7 +109,7 @@ pub use desc::{MAX_DEPTH, MAX_TERMS, MaterialError};
 #[cfg(feature = "serde")]
 pub(crate) use desc::{ModelDesc, Parts, invalid};
 #[cfg(feature = "serde")]
-pub use parts::{FresnelDesc, NdfDesc, Preset, Reflectance, Rgb};
+pub use parts::{FresnelDesc, NdfDesc, Reflectance, Rgb};
 #[cfg(feature = "serde")]
 pub(crate) use parts::{alphas, build_fresnel, field_fns, iso_alpha, named};
 
@@ -369,8 +369,8 @@ macro_rules! models {
 models! {
     /// [`Lambert`].
     Lambert(Lambert<R, 3>) => lambert::Lambert(LambertDesc),
-    /// [`BlinnPhongClassic`], the engine form.
-    BlinnPhongClassic(BlinnPhongClassic<R, 3>) => blinn_phong::BlinnPhongClassic(BlinnPhongClassicDesc),
+    /// [`ClassicBlinnPhong`], the engine form.
+    ClassicBlinnPhong(ClassicBlinnPhong<R, 3>) => blinn_phong::ClassicBlinnPhong(ClassicBlinnPhongDesc),
     /// [`NormalizedBlinnPhong`] with the seed's [`CosThetaI`] denominator.
     NormalizedBlinnPhong(NormalizedBlinnPhong<R, 3, CosThetaI>)
         => blinn_phong::NormalizedBlinnPhong(NormalizedBlinnPhongDesc),

@@ -113,7 +113,7 @@ impl<'de> Deserialize<'de> for Rgb {
 /// A named optical constant: the crate's one list of preset names, [`crate::ior::Preset`]
 /// (re-exported here for material files). Names in files are snake case: `"gold"`,
 /// `"titanium_dioxide"`, …
-pub use crate::ior::Preset;
+pub(crate) use crate::ior::Preset;
 
 /// A normal-incidence reflectance per channel (`f0`, a specular colour): given directly,
 /// or from a preset, or from a complex IOR.

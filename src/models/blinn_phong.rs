@@ -66,7 +66,7 @@ fn schlick_channels<R: Real, const N: usize>(f0: &[R; N], c: R) -> [R; N] {
 /// f(wi, wo) = R_d + R_s F(F0, wo·wm) (wm.z)^s / cos θi,      wm = normalize(wi + wo)
 /// ```
 ///
-/// ([`BlinnPhongClassic::out`] returns the engine's `Out` itself.) What this means:
+/// ([`ClassicBlinnPhong::out`] returns the engine's `Out` itself.) What this means:
 ///
 /// * `R_d` is **not** an albedo: the diffuse albedo is `π R_d` (engines folded the `π` into
 ///   the light's units), so `R_d > 1/π` reflects more than it receives.
@@ -78,7 +78,7 @@ fn schlick_channels<R: Real, const N: usize>(f0: &[R; N], c: R) -> [R; N] {
 /// Domain: `R_d, R_s, F0 ∈ [0, 1]`, `s ∈ [0, MAX_SHININESS]` ([`crate::ndf::MAX_SHININESS`]).
 /// `cos θi` below [`DENOM_FLOOR`] is floored.
 ///
-/// `S:` [`SqrtFn`] (default [`ExactSqrt`]; choose with [`BlinnPhongClassic::with_sqrt`])
+/// `S:` [`SqrtFn`] (default [`ExactSqrt`]; choose with [`ClassicBlinnPhong::with_sqrt`])
 /// normalizes the half vector, `wm = h/|h|`: engines use a fast reciprocal square root here.
 /// Its relative error `ε` becomes `≈ s·ε` in `(wm.z)^s`, so sharp lobes need more Newton steps
 /// (measured in `docs/tradeoffs.md`).
@@ -87,7 +87,7 @@ fn schlick_channels<R: Real, const N: usize>(f0: &[R; N], c: R) -> [R; N] {
 /// SIGGRAPH 1977; C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering",
 /// Eurographics 1994; Y. Gotanda, "Basic of Reflectance", tri-Ace, 2009.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BlinnPhongClassic<R, const N: usize, S = ExactSqrt> {
+pub struct ClassicBlinnPhong<R, const N: usize, S = ExactSqrt> {
     rd: [R; N],
     rs: R,
     f0: [R; N],
@@ -95,7 +95,7 @@ pub struct BlinnPhongClassic<R, const N: usize, S = ExactSqrt> {
     _s: PhantomData<S>,
 }
 
-impl<T: Scalar, const N: usize> BlinnPhongClassic<T, N> {
+impl<T: Scalar, const N: usize> ClassicBlinnPhong<T, N> {
     /// Engine Blinn-Phong with diffuse `rd`, specular coefficient `rs`, normal-incidence
     /// Fresnel reflectance `f0` (all in `[0, 1]`) and exponent
     /// `shininess ∈ [0, MAX_SHININESS]` ([`crate::ndf::MAX_SHININESS`] `= 2e8 − 2`).
@@ -118,13 +118,13 @@ impl<T: Scalar, const N: usize> BlinnPhongClassic<T, N> {
     }
 }
 
-impl<R: Real, const N: usize, S: SqrtFn> BlinnPhongClassic<R, N, S> {
+impl<R: Real, const N: usize, S: SqrtFn> ClassicBlinnPhong<R, N, S> {
     /// The same model with the half vector normalized by `S2`, e.g.
     /// [`crate::fast::NewtonSqrt`].
     #[inline]
     #[must_use]
-    pub fn with_sqrt<S2: SqrtFn>(self) -> BlinnPhongClassic<R, N, S2> {
-        BlinnPhongClassic {
+    pub fn with_sqrt<S2: SqrtFn>(self) -> ClassicBlinnPhong<R, N, S2> {
+        ClassicBlinnPhong {
             rd: self.rd,
             rs: self.rs,
             f0: self.f0,
@@ -156,11 +156,11 @@ impl<R: Real, const N: usize, S: SqrtFn> BlinnPhongClassic<R, N, S> {
     }
 }
 
-impl<T: Scalar, const N: usize, S: SqrtFn> Splat for BlinnPhongClassic<T, N, S> {
-    type On<L: Real> = BlinnPhongClassic<L, N, S>;
+impl<T: Scalar, const N: usize, S: SqrtFn> Splat for ClassicBlinnPhong<T, N, S> {
+    type On<L: Real> = ClassicBlinnPhong<L, N, S>;
     #[inline]
-    fn splat<L: Real>(&self) -> BlinnPhongClassic<L, N, S> {
-        BlinnPhongClassic {
+    fn splat<L: Real>(&self) -> ClassicBlinnPhong<L, N, S> {
+        ClassicBlinnPhong {
             rd: splat_array(&self.rd),
             rs: splat_scalar(self.rs),
             f0: splat_array(&self.f0),
@@ -170,7 +170,7 @@ impl<T: Scalar, const N: usize, S: SqrtFn> Splat for BlinnPhongClassic<T, N, S> 
     }
 }
 
-impl<R: Real, const N: usize, S: SqrtFn> Brdf<R, N> for BlinnPhongClassic<R, N, S> {
+impl<R: Real, const N: usize, S: SqrtFn> Brdf<R, N> for ClassicBlinnPhong<R, N, S> {
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
@@ -769,7 +769,7 @@ fn lobe_estimate<R: Real, const N: usize>(rs_c: R, f0: &[R; N], s: R, wo: Vec3<R
 ///
 /// `u[2] < P_d` chooses the diffuse lobe. `weight = f cos θi / pdf` with the whole `f`.
 /// [`SampleBrdf::albedo_estimate`] is `ρ̂_d + ρ̂_s`.
-impl<R: Real, const N: usize, S: SqrtFn> SampleBrdf<R, N> for BlinnPhongClassic<R, N, S> {
+impl<R: Real, const N: usize, S: SqrtFn> SampleBrdf<R, N> for ClassicBlinnPhong<R, N, S> {
     #[inline(always)]
     fn sample(&self, wo: Vec3<R>, u: [R; 3]) -> Sample<R, N> {
         let (pd, lobe) = self.mixture(wo);
@@ -789,7 +789,7 @@ impl<R: Real, const N: usize, S: SqrtFn> SampleBrdf<R, N> for BlinnPhongClassic<
     }
 }
 
-impl<R: Real, const N: usize, S: SqrtFn> BlinnPhongClassic<R, N, S> {
+impl<R: Real, const N: usize, S: SqrtFn> ClassicBlinnPhong<R, N, S> {
     /// `(ρ̂_d, ρ̂_s)` (see the [`SampleBrdf`] impl).
     #[inline(always)]
     fn estimates(&self, wo: Vec3<R>) -> (R, R) {
@@ -927,25 +927,25 @@ impl<R: Real, const N: usize> CoupledLambert<R, N> {
 // File description (feature `serde`)
 // ---------------------------------------------------------------------------------------------
 
-/// The file descriptions of [`BlinnPhongClassic`] (`model = "blinn_phong_classic"`) and
+/// The file descriptions of [`ClassicBlinnPhong`] (`model = "classic_blinn_phong"`) and
 /// [`NormalizedBlinnPhong`] (`model = "normalized_blinn_phong"`), re-exported from
 /// [`crate::material`].
 #[cfg(feature = "serde")]
 pub(crate) mod desc {
     use serde::{Deserialize, Serialize};
 
-    use super::{BlinnPhongClassic, NormalizedBlinnPhong};
+    use super::{ClassicBlinnPhong, NormalizedBlinnPhong};
     use crate::Scalar;
     use crate::material::{Material, MaterialError, ModelDesc, Reflectance, Rgb, invalid};
     use crate::normalization::Normalization;
 
     crate::material::field_fns!(rd, rs, f0, shininess, normalization, denominator, offset);
 
-    /// [`BlinnPhongClassic`], the engine form `Out = R_d (N·L) + R_s F (N·H)^s`.
+    /// [`ClassicBlinnPhong`], the engine form `Out = R_d (N·L) + R_s F (N·H)^s`.
     #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
     #[serde(deny_unknown_fields)]
-    #[serde(expecting = "the parameters of `blinn_phong_classic`")]
-    pub struct BlinnPhongClassicDesc {
+    #[serde(expecting = "the parameters of `classic_blinn_phong`")]
+    pub struct ClassicBlinnPhongDesc {
         /// Diffuse coefficient (the albedo is `π rd`).
         #[serde(deserialize_with = "field::rd")]
         pub rd: Rgb,
@@ -960,8 +960,8 @@ pub(crate) mod desc {
         pub shininess: f64,
     }
 
-    impl ModelDesc for BlinnPhongClassicDesc {
-        const NAME: &'static str = "blinn_phong_classic";
+    impl ModelDesc for ClassicBlinnPhongDesc {
+        const NAME: &'static str = "classic_blinn_phong";
 
         fn is_anisotropic(&self) -> bool {
             false
@@ -971,7 +971,7 @@ pub(crate) mod desc {
             let inv = invalid(Self::NAME);
             let f0 = Rgb(self.f0.value().map_err(&inv)?).scalars();
             let (rs, shininess) = (S::of(self.rs), S::of(self.shininess));
-            Ok(BlinnPhongClassic::new(self.rd.scalars(), rs, f0, shininess)
+            Ok(ClassicBlinnPhong::new(self.rd.scalars(), rs, f0, shininess)
                 .map_err(inv)?
                 .into())
         }

@@ -12,7 +12,7 @@
 //! | model | reciprocal | albedo ≤ 1 |
 //! |---|---|---|
 //! | [`Lambert`] | yes | yes (albedo ≤ 1) |
-//! | [`BlinnPhongClassic`] (engine form) | no (÷ cos θi) | no |
+//! | [`ClassicBlinnPhong`] (engine form) | no (÷ cos θi) | no |
 //! | [`NormalizedBlinnPhongSpecular`] with [`CosThetaI`] (seed form) | no | no (light side) |
 //! | [`NormalizedBlinnPhongSpecular`] with [`MaxCos`] (tri-Ace 2010 form) | yes | yes |
 //! | [`CoupledLambert`] (seed's diffuse) | no | yes |
@@ -65,7 +65,7 @@ pub use aliases::{
 };
 pub use ashikhmin_shirley::AshikhminShirley;
 pub use blinn_phong::{
-    BlinnPhongClassic, CosThetaI, CoupledLambert, MaxCos, NormalizedBlinnPhong,
+    ClassicBlinnPhong, CosThetaI, CoupledLambert, MaxCos, NormalizedBlinnPhong,
     NormalizedBlinnPhongSpecular, SpecularDenominator,
 };
 pub use cook_torrance::CookTorrance;

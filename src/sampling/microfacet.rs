@@ -55,7 +55,7 @@ use crate::fresnel::FresnelTerm;
 use crate::masking::Masking;
 use crate::models::{Brdf, CookTorrance, Kinks, Properties};
 use crate::ndf::{
-    AnyNdf, AshikhminShirley, Beckmann, BlinnPhong, Ggx, GgxIsotropic, Ndf, SmithLambda, erfc,
+    AnyNdf, AshikhminShirleyLobe, Beckmann, BlinnPhong, Ggx, GgxIsotropic, Ndf, SmithLambda, erfc,
 };
 use crate::{Real, Vec3};
 
@@ -101,7 +101,7 @@ pub trait NormalSampler<R: Real, D: Ndf<R>> {
 /// |---|---|
 /// | [`Ggx`], [`GgxIsotropic`] | [`SphericalCaps`] |
 /// | [`Beckmann`] | [`VisibleNormals`] |
-/// | [`BlinnPhong`], [`AshikhminShirley`] | [`FullDistribution`] (`D cos θm`) |
+/// | [`BlinnPhong`], [`AshikhminShirleyLobe`] | [`FullDistribution`] (`D cos θm`) |
 /// | [`AnyNdf`] | the wrapped distribution's |
 pub trait SampleNdf<R: Real>: Ndf<R> {
     /// See [`NormalSampler::sample_wm`].
@@ -624,9 +624,9 @@ impl<R: Real> NormalSampler<R, BlinnPhong<R>> for FullDistribution {
     }
 }
 
-impl<R: Real> NormalSampler<R, AshikhminShirley<R>> for FullDistribution {
+impl<R: Real> NormalSampler<R, AshikhminShirleyLobe<R>> for FullDistribution {
     #[inline(always)]
-    fn sample_wm(ndf: &AshikhminShirley<R>, _wo: Vec3<R>, u: [R; 2]) -> Vec3<R> {
+    fn sample_wm(ndf: &AshikhminShirleyLobe<R>, _wo: Vec3<R>, u: [R; 2]) -> Vec3<R> {
         let two = R::from_f64(2.0);
         let (nu, nv) = (ndf.nu(), ndf.nv());
         // Quadrant q ∈ {0, 1, 2, 3} and the position u' ∈ [0, 1) inside it.
@@ -648,11 +648,11 @@ impl<R: Real> NormalSampler<R, AshikhminShirley<R>> for FullDistribution {
         power_lobe(u[1], e + two, c, s)
     }
     #[inline(always)]
-    fn pdf_wm(ndf: &AshikhminShirley<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
+    fn pdf_wm(ndf: &AshikhminShirleyLobe<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
         R::select(wo.z.gt(R::zero()), full_pdf(ndf, wm), R::zero())
     }
     #[inline(always)]
-    fn weight_scale(_ndf: &AshikhminShirley<R>, wo: Vec3<R>, wm: Vec3<R>) -> Option<R> {
+    fn weight_scale(_ndf: &AshikhminShirleyLobe<R>, wo: Vec3<R>, wm: Vec3<R>) -> Option<R> {
         Some(full_weight_scale(wo, wm))
     }
 }
@@ -679,7 +679,7 @@ macro_rules! default_strategy {
 
 default_strategy!(Beckmann => VisibleNormals);
 default_strategy!(BlinnPhong => FullDistribution);
-default_strategy!(AshikhminShirley => FullDistribution);
+default_strategy!(AshikhminShirleyLobe => FullDistribution);
 
 /// Forwards to the wrapped distribution's default strategy (one branch per call on the
 /// variant, as for evaluation).
