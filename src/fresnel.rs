@@ -402,13 +402,16 @@ pub fn dielectric_transmittance<R: Real>(cos_theta_i: R, eta: R) -> R {
 /// `η̃ sin θt = s`. This is the classic "a², b²" form (e.g. K. D. Möller, *Optics*, 1988;
 /// used by Mitsuba 3's `fresnel_conductor`); here `a²`, `b²` are computed without
 /// subtractive cancellation: the larger is `(a²+b² + |t₀|)/2` and the smaller `η²k²` over it
-/// (`a²b² = η²k²`), and `R_s + R_p` share one division.
+/// (`a²b² = η²k²`); that division is not carried out (both fractions are multiplied through
+/// by the larger), and `R_s + R_p` share one division: two square roots and one division
+/// per channel (Mitsuba's form takes two of each).
 ///
 /// Two losses of the direct form are avoided: `t₀` is `(η² − k² − 1) + c²` or
 /// `(η² − k²) − s²`, whichever has the smaller constant (see `ConductorConsts`), so a small
 /// `t₀` near normal incidence keeps its digits; and at `η̃ = 1` exactly (`η = 1`, `k = 0`)
-/// `a = c`, so `R = 0` at every angle (`√(c²)` loses `c` once `c²` underflows: in `f32`
-/// `R` was 0.029 at `c = 1e-20`).
+/// `R = 0` at every angle, selected (`√(c²)` loses `c` once `c²` underflows: in `f32` the
+/// formula gave 0.029 at `c = 1e-20`). A dielectric (`k = 0`) exactly at its critical angle
+/// (`a = b = 0`) gives 1.
 ///
 /// * Domain: `eta ∈ [MIN_ETA, MAX_ETA]`, `k ∈ [0, MAX_K]` (tested on every lane type; finite
 ///   beyond as long as `(η² + k²)²` is finite in the lane precision); `cos_theta_i` taken by
@@ -456,6 +459,8 @@ pub fn conductor<R: Real>(cos_theta_i: R, eta: R, k: R) -> R {
 struct ConductorConsts<R> {
     p: R,
     q: R,
+    /// `|ηk|`.
+    nk: R,
     /// `η²k²`.
     nk2: R,
 }
@@ -471,6 +476,7 @@ impl<R: Real> ConductorConsts<R> {
         Self {
             p: R::select(second, e2, e1),
             q: R::select(second, R::one(), R::zero()),
+            nk: nk.abs(),
             nk2: nk * nk,
         }
     }
@@ -490,17 +496,34 @@ impl<R: Real> ConductorConsts<R> {
     /// The body of [`conductor`] for `c = |cos θi| ∈ [0, 1]` and `c2 = c²` (up to
     /// rounding).
     ///
-    /// Steps:
-    /// * `a² + b² = h = √(t₀² + 4η²k²)`; the larger of `a²`, `b²` is `(h + |t₀|)/2` (no
-    ///   cancellation) and the smaller follows from `a²b² = η²k²` — one division;
-    /// * `R = (R_s + R_p)/2 = num_s (den_p + num_p) / (2 den_s den_p)` — one division for
-    ///   both polarizations (every term is a sum of squares: no cancellation).
+    /// Steps (two square roots and one division per channel):
+    /// * `a² + b² = h = √(t₀² + 4η²k²)`; the larger of `a²`, `b²` is `m = (h + |t₀|)/2` (no
+    ///   cancellation), and the smaller is `η²k²/m` (`a²b² = η²k²`);
+    /// * instead of dividing, every term of both fractions is multiplied by `m`. With
+    ///   `g = √m`, `A = a·g` and `B = b²·m` are `A = m, B = η²k²` when `t₀ ≥ 0` (`a² = m`)
+    ///   and `A = ηk, B = m²` when `t₀ < 0` (`b² = m`), and
+    ///
+    ///   ```text
+    ///   R_s = ((A − c g)² + B) / ((A + c g)² + B)
+    ///   R_p / R_s = ((c A − s² g)² + c² B) / ((c A + s² g)² + c² B)
+    ///   R = (R_s + R_p)/2 = num_s (den_p + num_p) / (2 den_s den_p)
+    ///   ```
+    ///
+    ///   — one division for both polarizations; every term is a sum of squares (no
+    ///   cancellation). The product `den_s den_p` is at least `2 m⁴`-ish and at most
+    ///   `≈ 8 (η² + k²)⁴`: finite in `f32` on the whole domain (`η, k ≤ 10⁴`).
+    /// * `m < M` (`M = 10⁻⁹` in `f32`, `10⁻⁶⁰` in `f64`; only for `ηk < M` within `|t₀| < M`,
+    ///   a dielectric at its critical angle) gives `R = 1`, the value at `a = b = 0`: the
+    ///   products above would underflow there. The true value is within `≈ 4√M / c` of 1
+    ///   (`1.3·10⁻⁴/c` in `f32`), less than the spread that rounding `c` alone causes at that
+    ///   angle (`≈ 4√(ε)/c`, `10⁻³/c`).
+    /// * `η̃ = 1` exactly gives `R = 0` at every angle.
     #[inline(always)]
     fn reflectance(&self, c: R, c2: R) -> R {
         self.reflectance_with::<ExactSqrt>(c, c2)
     }
 
-    /// [`Self::reflectance`] with its square roots and divisions taken by `P` (the same
+    /// [`Self::reflectance`] with its square roots and division taken by `P` (the same
     /// bits for [`ExactSqrt`]).
     #[inline(always)]
     fn reflectance_with<P: SqrtFn>(&self, c: R, c2: R) -> R {
@@ -509,28 +532,28 @@ impl<R: Real> ConductorConsts<R> {
         let s2 = R::one() - c2;
         let t0 = self.t0(c2);
         let h = sqrt(t0.mul_add(t0, R::from_f64(4.0) * nk2));
-        let big = (h + t0.abs()) * R::from_f64(0.5);
-        let small = P::div(nk2, big.max(R::from_f64(1e-30)));
+        let m = (h + t0.abs()) * R::from_f64(0.5);
+        let g = sqrt(m);
         let t0_pos = t0.ge(R::zero());
-        let a2 = R::select(t0_pos, big, small);
-        let b2 = R::select(t0_pos, small, big);
-        // η̃ = 1: a = c exactly (then b = 0 and num_s = 0).
-        let a = R::select(self.matched(), c, sqrt(a2));
-        let (am, ap) = (a - c, a + c);
-        let num_s = am.mul_add(am, b2);
-        let den_s = ap.mul_add(ap, b2);
-        let cb2 = c2 * b2;
-        let (pm, pp) = (c.mul_add(a, -s2), c.mul_add(a, s2));
-        let num_p = pm.mul_add(pm, cb2);
-        let den_p = pp.mul_add(pp, cb2);
+        let a = R::select(t0_pos, m, self.nk);
+        let b = R::select(t0_pos, nk2, m * m);
+        let cg = c * g;
+        let (sm, sp) = (a - cg, a + cg);
+        let num_s = sm.mul_add(sm, b);
+        let den_s = sp.mul_add(sp, b);
+        let cb = c2 * b;
+        let s2g = s2 * g;
+        let (pm, pp) = (c.mul_add(a, -s2g), c.mul_add(a, s2g));
+        let num_p = pm.mul_add(pm, cb);
+        let den_p = pp.mul_add(pp, cb);
         let den = R::from_f64(2.0) * den_s * den_p;
-        // den = 0 only for an index-matched interface at grazing incidence (η = 1, k = 0,
-        // c = 0).
-        R::select(
-            den.gt(R::zero()),
-            P::div(num_s * (den_p + num_p), den),
-            R::zero(),
-        )
+        let critical = m.lt(R::from_f64(if core::mem::size_of::<R::Scalar>() == 4 {
+            1e-9
+        } else {
+            1e-60
+        }));
+        let r = R::select(critical, R::one(), P::div(num_s * (den_p + num_p), den));
+        R::select(self.matched(), R::zero(), r)
     }
 }
 
@@ -1092,15 +1115,16 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Dielectric<R, N> {
 /// ```
 ///
 /// `P:` [`SqrtFn`] (default [`ExactSqrt`]; choose with [`Conductor::with_policy`]) takes the
-/// two square roots and two divisions per channel; [`crate::fast::NewtonSqrtRecip`] replaces
+/// two square roots and one division per channel; [`crate::fast::NewtonSqrtRecip`] replaces
 /// them by estimates refined with Newton steps (error in `docs/tradeoffs.md`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Conductor<R, const N: usize, P = ExactSqrt> {
     eta: [R; N],
     k: [R; N],
-    /// Per channel the constants `p`, `q` and `η²k²` of `ConductorConsts`.
+    /// Per channel the constants `p`, `q`, `|ηk|` and `η²k²` of `ConductorConsts`.
     p: [R; N],
     q: [R; N],
+    nk: [R; N],
     nk2: [R; N],
     _p: PhantomData<P>,
 }
@@ -1126,6 +1150,7 @@ impl<S: Scalar, const N: usize> Conductor<S, N> {
             k,
             p: c.map(|c| c.p),
             q: c.map(|c| c.q),
+            nk: c.map(|c| c.nk),
             nk2: c.map(|c| c.nk2),
             _p: PhantomData,
         }
@@ -1171,6 +1196,7 @@ impl<R: Real, const N: usize, P: SqrtFn> Conductor<R, N, P> {
             k: self.k,
             p: self.p,
             q: self.q,
+            nk: self.nk,
             nk2: self.nk2,
             _p: PhantomData,
         }
@@ -1196,6 +1222,7 @@ impl<S: Scalar, const N: usize, P: SqrtFn> Splat for Conductor<S, N, P> {
             k: splat_array(&self.k),
             p: splat_array(&self.p),
             q: splat_array(&self.q),
+            nk: splat_array(&self.nk),
             nk2: splat_array(&self.nk2),
             _p: PhantomData,
         }
@@ -1216,6 +1243,7 @@ impl<R: Real, const N: usize, P: SqrtFn> FresnelTerm<R, N> for Conductor<R, N, P
             let k = ConductorConsts {
                 p: self.p[i],
                 q: self.q[i],
+                nk: self.nk[i],
                 nk2: self.nk2[i],
             };
             k.reflectance_with::<P>(c, cos2_theta_d)

@@ -225,6 +225,46 @@ fn conductor_reference_values() {
     assert_eq!(conductor(-0.4, 0.2, 3.5), conductor(0.4, 0.2, 3.5));
 }
 
+/// `conductor` with `k = 0` across the critical angle of a dense medium seen from inside,
+/// in `f32`, against the f64 dielectric at the same (f32) cosine: exactly 1 under TIR, and
+/// within the conditioning of the problem above it — near the critical cosine `c*`,
+/// `R ≈ 1 − 4√t₀/c` with `t₀ = η² − s²`, so rounding `c²` alone (`ε`) moves `R` by up to
+/// `4√ε/c`; the one-division form's critical-angle floor (`m < 10⁻⁹` gives 1) stays within
+/// the same `4√M/c`.
+#[test]
+fn conductor_without_k_across_the_critical_angle() {
+    let mut worst = 0.0f64;
+    for eta in [0.2f64, 0.5, 1.0 / 1.5, 0.9, 0.999] {
+        let c_star = (1.0 - eta * eta).sqrt();
+        for i in -1000..=1000 {
+            let c = (c_star * (1.0 + f64::from(i) * 1e-6)).min(1.0) as f32;
+            let cf = f64::from(c);
+            let got = f64::from(conductor(c, eta as f32, 0.0));
+            let want = dielectric(cf, eta as f32 as f64);
+            let t0 = (eta as f32 as f64).powi(2) - (1.0 - cf * cf);
+            if t0 < -1e-6 {
+                assert_eq!(got, 1.0, "η {eta} c {c}: TIR");
+            }
+            let bound = 4.0 * (f64::from(f32::EPSILON)).sqrt() / cf + 1e-6;
+            assert!(
+                (got - want).abs() <= bound,
+                "η {eta} c {c}: {got} vs {want} (bound {bound})"
+            );
+            // Away from the steep vicinity, float32 accuracy up to the same conditioning:
+            // `|∂R/∂t₀| ≈ 2/(c√t₀)` times the rounding of `t₀` (a few `ε`).
+            if t0 > 1e-4 {
+                let e = 8.0 * f64::from(f32::EPSILON) / (cf * t0.sqrt()) + 1e-6;
+                assert!(
+                    (got - want).abs() < e,
+                    "η {eta} c {c}: {got} vs {want} ({e})"
+                );
+            }
+            worst = worst.max((got - want).abs());
+        }
+    }
+    eprintln!("worst |Δ| across the critical angles: {worst:.2e}");
+}
+
 #[test]
 fn conductor_tir_phase() {
     // Dielectric under TIR through the complex amplitudes: modulus 1 and the classic phase.
