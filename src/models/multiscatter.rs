@@ -66,8 +66,8 @@ pub const FIT_TERMS: usize = 20;
 /// 4.7e-5 for GGX (peak at α = 1, μ = 0.05) and 6.4e-5 for Beckmann (α = 0.03, μ = 0.15);
 /// at grazing `μ ∈ [1e-3, 0.05)` at most 3.7e-4 for GGX (α = 1, μ = 0.003, where `E(μ)`
 /// is least smooth) and 6.9e-5 for Beckmann. (`directional_albedo` itself is within
-/// 1.5e-5 of the adaptive reference, `tests/energy.rs`.) With 12 terms the GGX error would be 2e-4, with 32
-/// terms 4e-6.
+/// 1.5e-5 of the adaptive reference, `tests/energy.rs`.) With 12 terms the GGX error
+/// would be 2e-4, with 32 terms 4e-6.
 ///
 /// **Evaluation.** One division (the warp) and `K − 1` steps of Clenshaw's recurrence
 /// `b_k = c_k + 2t b_{k+1} − b_{k+2}` (stable in `f32`), branch-free: the same body for
