@@ -253,68 +253,79 @@ pub struct Ggx<R> {
     alphas: Alphas<R>,
 }
 
-impl<S: Scalar> Ggx<S> {
-    /// Isotropic distribution with slope parameter `alpha ∈ [1e-4, 1]`.
-    ///
-    /// # Errors
-    /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming `alpha`, for `alpha` outside
-    /// `[1e-4, 1]`.
-    #[inline]
-    pub fn new(alpha: S) -> Result<Self, Error> {
-        Ok(Self {
-            alphas: Alphas::isotropic(alpha)?,
-        })
-    }
+/// The constructors and accessors shared by the two-slope NDFs (GGX, Beckmann): `new`,
+/// `anisotropic`, `from_roughness` on scalars, `from_lanes`, `alpha_x`, `alpha_y` on any
+/// [`Real`]. Their formulas stay in each type's own `impl` blocks.
+macro_rules! alpha_ndf_constructors {
+    ($t:ident) => {
+        impl<S: Scalar> $t<S> {
+            /// Isotropic distribution with slope parameter `alpha ∈ [1e-4, 1]`.
+            ///
+            /// # Errors
+            /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming `alpha`, for `alpha` outside
+            /// `[1e-4, 1]`.
+            #[inline]
+            pub fn new(alpha: S) -> Result<Self, Error> {
+                Ok(Self {
+                    alphas: Alphas::isotropic(alpha)?,
+                })
+            }
 
-    /// Anisotropic distribution: `alpha_x` along the tangent, `alpha_y` along the
-    /// bitangent, each in `[1e-4, 1]`.
-    ///
-    /// # Errors
-    /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming the offending parameter.
-    #[inline]
-    pub fn anisotropic(alpha_x: S, alpha_y: S) -> Result<Self, Error> {
-        Self::from_lanes(alpha_x, alpha_y)
-    }
+            /// Anisotropic distribution: `alpha_x` along the tangent, `alpha_y` along the
+            /// bitangent, each in `[1e-4, 1]`.
+            ///
+            /// # Errors
+            /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming the offending parameter.
+            #[inline]
+            pub fn anisotropic(alpha_x: S, alpha_y: S) -> Result<Self, Error> {
+                Self::from_lanes(alpha_x, alpha_y)
+            }
 
-    /// Isotropic distribution from perceptual roughness `roughness ∈ [0.01, 1]`,
-    /// `alpha = roughness²` ([`roughness_to_alpha`]).
-    ///
-    /// # Errors
-    /// As [`Self::new`] for the resulting `alpha` (so `roughness < 0.01` is rejected
-    /// and reported as `alpha`).
-    #[inline]
-    pub fn from_roughness(roughness: S) -> Result<Self, Error> {
-        Self::new(roughness * roughness)
-    }
+            /// Isotropic distribution from perceptual roughness `roughness ∈ [0.01, 1]`,
+            /// `alpha = roughness²` ([`roughness_to_alpha`]).
+            ///
+            /// # Errors
+            /// As [`Self::new`] for the resulting `alpha` (so `roughness < 0.01` is rejected
+            /// and reported as `alpha`).
+            #[inline]
+            pub fn from_roughness(roughness: S) -> Result<Self, Error> {
+                Self::new(roughness * roughness)
+            }
+        }
+
+        impl<R: Real> $t<R> {
+            /// One (possibly different) material per lane: every lane of `alpha_x` and
+            /// `alpha_y` is validated as in [`Self::anisotropic`].
+            ///
+            /// # Errors
+            /// The first offending lane's parameter.
+            #[inline]
+            pub fn from_lanes(alpha_x: R, alpha_y: R) -> Result<Self, Error> {
+                Ok(Self {
+                    alphas: Alphas::from_lanes(alpha_x, alpha_y)?,
+                })
+            }
+
+            /// Slope parameter along the tangent (x).
+            #[inline]
+            #[must_use]
+            pub fn alpha_x(&self) -> R {
+                self.alphas.alpha_x
+            }
+
+            /// Slope parameter along the bitangent (y).
+            #[inline]
+            #[must_use]
+            pub fn alpha_y(&self) -> R {
+                self.alphas.alpha_y
+            }
+        }
+    };
 }
 
+alpha_ndf_constructors!(Ggx);
+
 impl<R: Real> Ggx<R> {
-    /// One (possibly different) material per lane: every lane of `alpha_x` and
-    /// `alpha_y` is validated as in [`Self::anisotropic`].
-    ///
-    /// # Errors
-    /// The first offending lane's parameter.
-    #[inline]
-    pub fn from_lanes(alpha_x: R, alpha_y: R) -> Result<Self, Error> {
-        Ok(Self {
-            alphas: Alphas::from_lanes(alpha_x, alpha_y)?,
-        })
-    }
-
-    /// Slope parameter along the tangent (x).
-    #[inline]
-    #[must_use]
-    pub fn alpha_x(&self) -> R {
-        self.alphas.alpha_x
-    }
-
-    /// Slope parameter along the bitangent (y).
-    #[inline]
-    #[must_use]
-    pub fn alpha_y(&self) -> R {
-        self.alphas.alpha_y
-    }
-
     /// `cos²θ + x² αx² + y² αy²` of a unit `w`: the radicand of the visibility denominators.
     #[inline(always)]
     fn root2(&self, w: Vec3<R>) -> R {
@@ -686,68 +697,7 @@ pub struct Beckmann<R> {
     alphas: Alphas<R>,
 }
 
-impl<S: Scalar> Beckmann<S> {
-    /// Isotropic distribution with slope parameter `alpha ∈ [1e-4, 1]`.
-    ///
-    /// # Errors
-    /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming `alpha`, for `alpha` outside
-    /// `[1e-4, 1]`.
-    #[inline]
-    pub fn new(alpha: S) -> Result<Self, Error> {
-        Ok(Self {
-            alphas: Alphas::isotropic(alpha)?,
-        })
-    }
-
-    /// Anisotropic distribution: `alpha_x` along the tangent, `alpha_y` along the
-    /// bitangent, each in `[1e-4, 1]`.
-    ///
-    /// # Errors
-    /// [`Error::NotFinite`] or [`Error::OutOfDomain`] naming the offending parameter.
-    #[inline]
-    pub fn anisotropic(alpha_x: S, alpha_y: S) -> Result<Self, Error> {
-        Self::from_lanes(alpha_x, alpha_y)
-    }
-
-    /// Isotropic distribution from perceptual roughness `roughness ∈ [0.01, 1]`,
-    /// `alpha = roughness²` ([`roughness_to_alpha`]).
-    ///
-    /// # Errors
-    /// As [`Self::new`] for the resulting `alpha` (so `roughness < 0.01` is rejected
-    /// and reported as `alpha`).
-    #[inline]
-    pub fn from_roughness(roughness: S) -> Result<Self, Error> {
-        Self::new(roughness * roughness)
-    }
-}
-
-impl<R: Real> Beckmann<R> {
-    /// One (possibly different) material per lane: every lane of `alpha_x` and
-    /// `alpha_y` is validated as in [`Self::anisotropic`].
-    ///
-    /// # Errors
-    /// The first offending lane's parameter.
-    #[inline]
-    pub fn from_lanes(alpha_x: R, alpha_y: R) -> Result<Self, Error> {
-        Ok(Self {
-            alphas: Alphas::from_lanes(alpha_x, alpha_y)?,
-        })
-    }
-
-    /// Slope parameter along the tangent (x).
-    #[inline]
-    #[must_use]
-    pub fn alpha_x(&self) -> R {
-        self.alphas.alpha_x
-    }
-
-    /// Slope parameter along the bitangent (y).
-    #[inline]
-    #[must_use]
-    pub fn alpha_y(&self) -> R {
-        self.alphas.alpha_y
-    }
-}
+alpha_ndf_constructors!(Beckmann);
 
 impl<R: Real> Ndf<R> for Beckmann<R> {
     /// `beckmann_d` on `x²/αx² + y²/αy²`.
