@@ -1060,8 +1060,17 @@ fn values_beyond_f32_do_not_fit() {
     );
     assert!(matches!(
         Ward::isotropic([0.1_f64], [0.1], 1e39),
-        Err(Error::DoesNotFit {
-            param: "alpha_x",
+        Err(Error::DoesNotFit { param: "alpha", .. })
+    ));
+    // The isotropic constructor names its own parameter.
+    assert!(matches!(
+        Ward::isotropic([0.1_f32], [0.1], 0.0),
+        Err(Error::OutOfDomain { param: "alpha", .. })
+    ));
+    assert!(matches!(
+        Ward::new([0.1_f32], [0.1], 0.1, 0.0),
+        Err(Error::OutOfDomain {
+            param: "alpha_y",
             ..
         })
     ));

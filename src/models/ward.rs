@@ -140,9 +140,11 @@ impl<S: Scalar, const N: usize> Ward<S, N> {
     /// Isotropic Ward (`αx = αy = alpha`).
     ///
     /// # Errors
-    /// As [`Ward::new`], naming `"alpha_x"` for a bad `alpha`.
+    /// As [`Ward::new`], naming `"alpha"` for a bad `alpha`.
     #[inline]
     pub fn isotropic(rho_d: [S; N], rho_s: [S; N], alpha: S) -> Result<Self, Error> {
+        let min_alpha: f64 = <S as Scalar>::of(MIN_ALPHA).into();
+        crate::error::check("alpha", alpha, "[1e-4, ∞)", |v| v >= min_alpha)?;
         Self::new(rho_d, rho_s, alpha, alpha)
     }
 }
