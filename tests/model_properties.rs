@@ -984,7 +984,7 @@ fn ward_alpha_lower_bound_in_lane_precision() {
     assert!(matches!(
         Ward::<f64, 1>::isotropic([0.1], [0.1], below64),
         Err(Error::OutOfDomain {
-            param: "alpha_x",
+            param: "alpha",
             ..
         })
     ));
