@@ -983,10 +983,7 @@ fn ward_alpha_lower_bound_in_lane_precision() {
     assert!(Ward::<f64, 1>::isotropic([0.1], [0.1], 1e-4).is_ok());
     assert!(matches!(
         Ward::<f64, 1>::isotropic([0.1], [0.1], below64),
-        Err(Error::OutOfDomain {
-            param: "alpha",
-            ..
-        })
+        Err(Error::OutOfDomain { param: "alpha", .. })
     ));
     // Accepted at the boundary means finite everywhere, including grazing.
     let m = Ward::<f32, 1>::isotropic([0.0], [1.0], 1e-4)
