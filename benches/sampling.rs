@@ -5,8 +5,9 @@ use std::hint::black_box;
 
 use brdf::SampleBrdf;
 use brdf::batch::{self, Directions, Isa, SampleOut};
-use brdf::fresnel::Schlick;
-use brdf::masking::SmithHeightCorrelated;
+use brdf::fresnel::{Conductor, Schlick};
+use brdf::ior::Preset;
+use brdf::masking::{SmithHeightCorrelated, SmithSeparable};
 use brdf::models::{CookTorrance, Lambert, OrenNayar};
 use brdf::ndf::{Beckmann, GgxIsotropic};
 use brdf::real::F32Fma;
@@ -138,5 +139,17 @@ fn microfacet(c: &mut Criterion) {
     bench_sampler(c, "sample_beckmann", "visible_normals", &beckmann);
 }
 
-criterion_group!(benches, diffuse, microfacet);
+/// Mitsuba's `roughconductor` workload (as `benches/peers/run.sh --sample`): GGX α = 0.3
+/// (`GgxIsotropic`), the exact RGB conductor Fresnel of gold, separable Smith `G1·G1`, drawn
+/// by visible normals (Heitz 2018, Mitsuba's `sample_visible`) and by the default spherical
+/// caps; portable against the dispatched kernels (the `Isa` of each row).
+fn roughconductor(c: &mut Criterion) {
+    let gold = Conductor::<f32, 3>::from_preset(Preset::Gold).unwrap();
+    let ct = CookTorrance::new(GgxIsotropic::new(0.3_f32).unwrap(), gold, SmithSeparable);
+    let group = "batch_sample_roughconductor";
+    bench_sampler(c, group, "visible_normals", &ct.sampled_with::<VisibleNormals>());
+    bench_sampler(c, group, "spherical_caps", &ct.sampled_with::<SphericalCaps>());
+}
+
+criterion_group!(benches, diffuse, microfacet, roughconductor);
 criterion_main!(benches);

@@ -6,7 +6,7 @@
 //! lane, so lanes that choose different lobes stay in one instruction stream.
 
 use super::{Sample, cosine_hemisphere_pdf};
-use crate::fast::ExactSqrt;
+use crate::fast::{ExactSqrt, sin_cos_2pi};
 use crate::models::{half_and_cos_d, select_vec};
 use crate::{Real, Vec3};
 
@@ -77,9 +77,9 @@ pub(crate) fn basis<R: Real>(a: Vec3<R>) -> (Vec3<R>, Vec3<R>) {
 #[inline(always)]
 pub(crate) fn sample_cos_power<R: Real>(axis: Vec3<R>, e: R, u0: R, u1: R) -> Vec3<R> {
     let (cos, sin) = cos_power_angle(e, u0);
-    let phi = R::from_f64(2.0 * core::f64::consts::PI) * u1;
+    let (sin_phi, cos_phi) = sin_cos_2pi(u1);
     let (t, b) = basis(axis);
-    t.scale(sin * phi.cos()) + b.scale(sin * phi.sin()) + axis.scale(cos)
+    t.scale(sin * cos_phi) + b.scale(sin * sin_phi) + axis.scale(cos)
 }
 
 /// A half-vector distribution: draws the microfacet normal `wm` (upper hemisphere) and gives
@@ -112,10 +112,10 @@ pub(crate) struct PhongHalf<R> {
 impl<R: Real> HalfLobe<R> for PhongHalf<R> {
     #[inline(always)]
     fn draw(&self, u0: R, u1: R) -> Vec3<R> {
-        let psi = R::from_f64(2.0 * core::f64::consts::PI) * u1;
+        let (sin_psi, cos_psi) = sin_cos_2pi(u1);
         let (x, y) = (
-            (self.nv + R::one()).sqrt() * psi.cos(),
-            (self.nu + R::one()).sqrt() * psi.sin(),
+            (self.nv + R::one()).sqrt() * cos_psi,
+            (self.nu + R::one()).sqrt() * sin_psi,
         );
         // |(x, y)| ≥ 1: both square roots are ≥ 1.
         let inv = x.mul_add(x, y * y).sqrt().recip();
@@ -166,12 +166,12 @@ impl<R: Real> HalfLobe<R> for WardHalf<R> {
     #[inline(always)]
     fn draw(&self, u0: R, u1: R) -> Vec3<R> {
         let (ix2, iy2) = self.inv2();
-        let psi = R::from_f64(2.0 * core::f64::consts::PI) * u1;
+        let (sin_psi, cos_psi) = sin_cos_2pi(u1);
         // (αx cos ψ, αy sin ψ) ∝ (cos ψ/αy, sin ψ/αx); rescaled by the larger factor first so
         // that the squares neither overflow nor underflow.
         let (fx, fy) = (iy2.sqrt(), ix2.sqrt());
         let big = fx.max(fy);
-        let (x, y) = ((fx / big) * psi.cos(), (fy / big) * psi.sin());
+        let (x, y) = ((fx / big) * cos_psi, (fy / big) * sin_psi);
         let inv = x.mul_add(x, y * y).sqrt().recip();
         let (c, s) = (x * inv, y * inv);
         let a = (c * c).mul_add(ix2, s * s * iy2);

@@ -226,11 +226,12 @@ fn unstretch<R: Real>(ax: R, ay: R, h: Vec3<R>) -> Vec3<R> {
     )
 }
 
-/// `(cos 2πu, sin 2πu)`.
+/// `(cos 2πu, sin 2πu)` by [`crate::fast::sin_cos_2pi`] (polynomial, no library call, so the
+/// samplers vectorize in the batch kernels).
 #[inline(always)]
 fn cis<R: Real>(u: R) -> (R, R) {
-    let phi = R::from_f64(core::f64::consts::TAU) * u;
-    (phi.cos(), phi.sin())
+    let (s, c) = crate::fast::sin_cos_2pi(u);
+    (c, s)
 }
 
 /// Heitz 2018: GGX visible normal for `α = (ax, ay)`.
@@ -633,9 +634,10 @@ impl<R: Real> NormalSampler<R, AshikhminShirleyLobe<R>> for FullDistribution {
         let u4 = u[0] * R::from_f64(4.0);
         let q = u4.floor().min(R::from_f64(3.0));
         let up = (u4 - q).clamp(R::zero(), R::one());
-        let a = R::from_f64(core::f64::consts::FRAC_PI_2) * up;
+        // a = π up/2 = 2π (up/4) (the quarter is exact): (cos a, sin a) without a library call.
+        let (sin_a, cos_a) = crate::fast::sin_cos_2pi(up * R::from_f64(0.25));
         // tan φ = √((nu + 2)/(nv + 2)) tan a, in the first quadrant.
-        let (cx, sy) = ((nv + two).sqrt() * a.cos(), (nu + two).sqrt() * a.sin());
+        let (cx, sy) = ((nv + two).sqrt() * cos_a, (nu + two).sqrt() * sin_a);
         let inv = (cx * cx + sy * sy).max(tiny()).sqrt().recip();
         let (c, s) = (cx * inv, sy * inv);
         // φ → π − φ, π + φ, 2π − φ in the other quadrants.
