@@ -127,7 +127,7 @@ pub trait SampleBrdf<R: Real, const N: usize>: Brdf<R, N> {
 /// sin θ = √u1,  cos θ = √(1 − u1),  φ = 2π u2,  pdf = cos θ / π
 /// ```
 ///
-/// `(cos φ, sin φ)` by [`crate::fast::sin_cos_2pi`] (polynomial, ≤ 1 ULP in `f32`, no library
+/// `(cos φ, sin φ)` by [`crate::fast::sin_cos_2pi`] (polynomial, ≤ ≤ 1.72 ULP in `f32`, no library
 /// call: the warp vectorizes in the batch kernels).
 /// (Malley's method in its polar form: a uniform disk sample lifted to the hemisphere.)
 /// `u1 = 1` gives a horizon direction, `u1 = 0` the normal. Reference: M. Pharr, W. Jakob,
