@@ -147,8 +147,18 @@ fn roughconductor(c: &mut Criterion) {
     let gold = Conductor::<f32, 3>::from_preset(Preset::Gold).unwrap();
     let ct = CookTorrance::new(GgxIsotropic::new(0.3_f32).unwrap(), gold, SmithSeparable);
     let group = "batch_sample_roughconductor";
-    bench_sampler(c, group, "visible_normals", &ct.sampled_with::<VisibleNormals>());
-    bench_sampler(c, group, "spherical_caps", &ct.sampled_with::<SphericalCaps>());
+    bench_sampler(
+        c,
+        group,
+        "visible_normals",
+        &ct.sampled_with::<VisibleNormals>(),
+    );
+    bench_sampler(
+        c,
+        group,
+        "spherical_caps",
+        &ct.sampled_with::<SphericalCaps>(),
+    );
 }
 
 criterion_group!(benches, diffuse, microfacet, roughconductor);

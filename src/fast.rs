@@ -731,9 +731,15 @@ pub fn sin_cos_2pi<R: Real>(u: R) -> (R, R) {
     let r = t - k;
     let w = r * r;
     let (sin, cos) = if single::<R>() {
-        (r * horner(&SIN_2PI_Q32, w), horner(&COS_2PI_P32, w).mul_add(w, R::one()))
+        (
+            r * horner(&SIN_2PI_Q32, w),
+            horner(&COS_2PI_P32, w).mul_add(w, R::one()),
+        )
     } else {
-        (r * horner(&SIN_2PI_Q64, w), horner(&COS_2PI_P64, w).mul_add(w, R::one()))
+        (
+            r * horner(&SIN_2PI_Q64, w),
+            horner(&COS_2PI_P64, w).mul_add(w, R::one()),
+        )
     };
     // k ∈ {0, …, 4}: odd k swaps sin and cos; cos is negated for k ∈ {1, 2}, sin for {2, 3}.
     let swap = (k - R::from_f64(2.0)).abs().eq(R::one());

@@ -89,7 +89,10 @@ fn coefficients_are_the_chebyshev_interpolants() {
                 (7, 4..) => 1e-4,
                 _ => 1e-9,
             };
-            assert!((a - b).abs() <= tol * b.abs(), "{name} coefficient {k}: {a} vs {b}");
+            assert!(
+                (a - b).abs() <= tol * b.abs(),
+                "{name} coefficient {k}: {a} vs {b}"
+            );
         }
         // In exact (f64) arithmetic the shipped polynomials meet their documented levels.
         let worst = (0..=100_000)
