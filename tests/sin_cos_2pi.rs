@@ -72,7 +72,8 @@ fn chebyshev_fit(g: fn(f64) -> f64, n: usize) -> Vec<f64> {
 
 #[test]
 fn coefficients_are_the_chebyshev_interpolants() {
-    let cases: [(&str, fn(f64) -> f64, &[f64]); 4] = [
+    type Case<'a> = (&'a str, fn(f64) -> f64, &'a [f64]);
+    let cases: [Case; 4] = [
         ("sin f32", sin_target, &SIN_2PI_Q32),
         ("cos f32", cos_target, &COS_2PI_P32),
         ("sin f64", sin_target, &SIN_2PI_Q64),
