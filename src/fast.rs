@@ -529,7 +529,7 @@ pub fn pow_finish<const E: usize, R: Real>(t: R, y: R) -> R {
 /// assert!((y * 2.0f32.sqrt() - 1.0).abs() < 1e-6);
 /// assert!(fast::rsqrt::<1, f32>(0.0).is_finite());
 /// ```
-#[inline]
+#[inline(always)]
 #[must_use]
 pub fn rsqrt<const N: usize, R: Real>(x: R) -> R {
     const { assert!(N <= 3, "fast::rsqrt takes 0..=3 Newton steps") };
@@ -838,7 +838,7 @@ impl<const STEPS: usize> SqrtFn for NewtonSqrt<STEPS> {
 /// let y = fast::recip::<3, f32>(3.0);
 /// assert!((y * 3.0 - 1.0).abs() < 2e-7);
 /// ```
-#[inline]
+#[inline(always)]
 #[must_use]
 pub fn recip<const N: usize, R: Real>(x: R) -> R {
     const { assert!(N <= 3, "fast::recip takes 0..=3 Newton steps") };
