@@ -651,3 +651,452 @@ fn atan(x: f64) -> f64 {
 pub fn f82_average<R: Real>(f0: R, b: R) -> R {
     schlick_average(f0) - b * R::from_f64(1.0 / 126.0)
 }
+
+// ---------------------------------------------------------------------------------------
+// Rough dielectric interface (Walter et al. 2007): reflection + transmission
+// ---------------------------------------------------------------------------------------
+
+/// Domain of the relative IOR of the dielectric albedo functions: `eta ∈ [1/4, 4]`.
+pub const DIELECTRIC_ETA_RANGE: (f64, f64) = (0.25, 4.0);
+
+/// Directional albedo `E(μo, α, η) = R + T` of the single-scattering rough dielectric BSDF
+/// of Walter et al. 2007 (isotropic GGX, height-correlated Smith, exact dielectric Fresnel):
+/// the sum of [`dielectric_albedo_split`]'s two parts. See there for the definitions, the
+/// conventions (`eta`, the energy form of `f_t`) and the method.
+///
+/// Domain: `alpha ∈ [1e-4, 1]`, `eta ∈ [1/4, 4]`, `cos_theta_o ∈ [0, 1]` (clamped to
+/// `[1e-6, 1]`). Result in `[0, 1]`; `→ 1` as `α → 0` (smooth interface: `R + T = 1`).
+///
+/// Reference: B. Walter, S. Marschner, H. Li, K. Torrance, "Microfacet Models for Refraction
+/// through Rough Surfaces", EGSR 2007.
+///
+/// ```
+/// use brdf::energy::dielectric_albedo;
+/// // Glass seen from outside, nearly smooth: almost no energy is lost.
+/// assert!((dielectric_albedo(1e-3, 1.5, 0.7)? - 1.0).abs() < 1e-3);
+/// // Rough glass: single scattering loses energy.
+/// assert!(dielectric_albedo(1.0, 1.5, 0.7)? < 0.95);
+/// # Ok::<(), brdf::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`dielectric_albedo_split`].
+pub fn dielectric_albedo(alpha: f64, eta: f64, cos_theta_o: f64) -> Result<f64, Error> {
+    let [r, t] = dielectric_albedo_split(alpha, eta, cos_theta_o)?;
+    Ok(r + t)
+}
+
+/// The reflected and transmitted parts `[R(μo), T(μo)]` of the directional albedo of the
+/// single-scattering rough dielectric BSDF of Walter et al. 2007, isotropic GGX with the
+/// height-correlated Smith term `G2 = 1/(1 + Λ(wo) + Λ(wi))` (the masking of the crate's
+/// `CookTorrance` default, used for both lobes as in pbrt-v4; Heitz 2014 §6 gives a
+/// Beta-function form for the exact height-correlated transmission, not used here).
+///
+/// **Conventions.** Local frame `z` = the normal on the viewer's side, `wo.z = μo > 0`;
+/// `eta = η_beyond / η_viewer` is the relative IOR of the medium below the interface over
+/// the medium `wo` is in: `eta > 1` sees glass **from outside**, `eta < 1` (its reciprocal)
+/// the same glass **from inside** (total internal reflection possible).
+///
+/// ```text
+/// R(μo) = ∫_{wi.z>0} f_r(wi, wo) cos θi dωi,   f_r = D F(wo·wm) G2 / (4 cos θi cos θo),  wm ∝ wi + wo
+/// T(μo) = ∫_{wi.z<0} f_t(wi, wo) |cos θi| dωi, wm = −(η wi + wo)/|η wi + wo|   (wm.z > 0)
+/// f_t   = |wi·wm| |wo·wm| / (|cos θi| cos θo) · η² (1 − F(wo·wm)) D G2 / (wo·wm + η wi·wm)²
+/// ```
+///
+/// with `wo·wm > 0 > wi·wm` (else `f_t = 0`) and `F = fresnel::dielectric(wo·wm, η)`.
+///
+/// **Energy form, loudly.** This `f_t` is the *importance* (energy) form: it carries `η²`
+/// where Walter's radiance BSDF carries `1` (relative to the same denominator), i.e. it
+/// omits the radiance factor `1/η²`: `f_t,radiance = f_t / η²`. So the smooth limit is
+/// `R + T = 1` (`T → 1 − F(μo)`), and the radiance-form albedo is `R + T/η²`.
+///
+/// **Derivation of the Jacobian.** Refraction through `wm` maps `dωi` to
+/// `dωm = η² |wi·wm| / (wo·wm + η wi·wm)² dωi` (Walter et al. 2007, eq. 17, with `wo` the
+/// incident side), so `f_t |cos θi| dωi = (1 − F) G2 D (wo·wm)/cos θo dωm`; likewise
+/// `dωi = 4 (wo·wm) dωm` for reflection. Both parts are then integrals over the visible
+/// normals:
+///
+/// ```text
+/// R = ∫ D (wo·wm)⁺/μo · F G2(wo, wr) [wr.z > 0] dωm,        wr = 2 (wo·wm) wm − wo
+/// T = ∫ D (wo·wm)⁺/μo · (1 − F) G2(wo, wt) [wt.z < 0] dωm,   wt = −wo/η + ((wo·wm)/η − cos θt) wm
+/// ```
+///
+/// (`cos θt = √(1 − (1 − (wo·wm)²)/η²)`, `1 − F = 0` under total internal reflection.)
+///
+/// **Method.** `R` is [`directional_albedo`]'s horizon-cut rule with the weight `F(wo·wm)`.
+/// `T` uses the same variables (`w = √(1 − v)`, `v` the GGX CDF in `tan²θm`; the graded
+/// `φm` mesh), `w` running from the horizon of `wo` (`wo·wm = 0`) to the normal; for
+/// `eta < 1` the support of the `T` integrand (not TIR and `wt.z < 0`) is located along each
+/// `φm` line by a scan of 64 cells and bisection, and each piece gets [`PANELS`] ×
+/// [`ORDER`] Gauss-Legendre nodes. For `eta ≥ 1` the integrand is supported on the whole
+/// line. Deterministic. Accuracy (against a dense, independent quadrature over `wi` and a
+/// Monte-Carlo estimate with the crate's visible-normal sampler): `tests/energy_dielectric.rs`.
+///
+/// Reference: Walter et al., EGSR 2007; E. Heitz, "Understanding the Masking-Shadowing
+/// Function in Microfacet-Based BRDFs", JCGT 3(2), 2014.
+///
+/// # Errors
+/// [`Error::NotFinite`] or [`Error::OutOfDomain`] for `alpha` outside `[1e-4, 1]`, `eta`
+/// outside `[1/4, 4]` or `cos_theta_o` outside `[0, 1]`.
+pub fn dielectric_albedo_split(alpha: f64, eta: f64, cos_theta_o: f64) -> Result<[f64; 2], Error> {
+    let (lo, hi) = DIELECTRIC_ETA_RANGE;
+    crate::error::check("eta", eta, "[1/4, 4]", |e| (lo..=hi).contains(&e))?;
+    let [r] = lobe_moments(Distribution::Ggx, alpha, cos_theta_o, |d| {
+        [crate::fresnel::dielectric(d, eta)]
+    })?;
+    let ndf = Ggx::new(alpha)?;
+    let r = if eta < 1.0 {
+        interface_part(&ndf, alpha, eta, cos_theta_o, Lobe::Reflection)
+    } else {
+        r
+    };
+    Ok([
+        r,
+        interface_part(&ndf, alpha, eta, cos_theta_o, Lobe::Transmission),
+    ])
+}
+
+/// The refracted direction of `wo` through `wm` (`c = wo·wm > 0`) for relative IOR `eta`
+/// (beyond over viewer), `None` under total internal reflection.
+fn refract_through(wo: Vec3<f64>, wm: Vec3<f64>, c: f64, eta: f64) -> Option<Vec3<f64>> {
+    let sin2_t = (1.0 - c * c) / (eta * eta);
+    if sin2_t >= 1.0 {
+        return None;
+    }
+    let cos_t = Real::sqrt(1.0 - sin2_t);
+    let k = c / eta - cos_t;
+    Some(Vec3::new(
+        -wo.x / eta + k * wm.x,
+        -wo.y / eta + k * wm.y,
+        -wo.z / eta + k * wm.z,
+    ))
+}
+
+/// Which lobe [`interface_part`] integrates.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Lobe {
+    Reflection,
+    Transmission,
+}
+
+/// `R(μo)` or `T(μo)` of [`dielectric_albedo_split`] by the scan rule (validated inputs).
+///
+/// Along each `φm` line, `w` ∈ `[0, 1]` is cut where the integrand's region changes (zero /
+/// beyond / below the critical angle, i.e. the horizons and the total-internal-reflection
+/// kink of `F`), found by a scan of 64 cells and 60 bisections; each piece gets
+/// [`integrate_01_graded`] (geometric panels towards its lower, horizon-side end).
+fn interface_part(ndf: &Ggx<f64>, alpha: f64, eta: f64, cos_theta_o: f64, lobe: Lobe) -> f64 {
+    let mu = cos_theta_o.clamp(1e-6, 1.0);
+    let s = Real::sqrt(1.0 - mu * mu);
+    let wo = Vec3::new(s, 0.0, mu);
+    let lo = ndf.lambda(wo);
+    let nodes = gauss_legendre::<ORDER>();
+    let a2 = alpha * alpha;
+    // cos² of the critical angle on the facet (no TIR for eta ≥ 1).
+    let crit2 = if eta < 1.0 { 1.0 - eta * eta } else { -1.0 };
+    let inner = |phi: f64| {
+        let (sp, cp) = (Real::sin(phi), Real::cos(phi));
+        // The integrand at w (w = α/√(α² + tan²θm)) and its region label (0: zero).
+        let eval = |w: f64| -> (f64, u8) {
+            let t2 = a2 * (1.0 - w * w) / (w * w);
+            let c = 1.0 / Real::sqrt(1.0 + t2);
+            let st = Real::sqrt(t2) * c;
+            let wm = Vec3::new(st * cp, st * sp, c);
+            let d = wo.dot(wm);
+            if d.is_nan() || d <= 0.0 {
+                return (0.0, 0);
+            }
+            let label = if d * d > crit2 { 1 } else { 2 };
+            let f = crate::fresnel::dielectric(d, eta);
+            match lobe {
+                Lobe::Reflection => {
+                    let wr = wo.reflect(wm);
+                    if wr.z > 0.0 {
+                        let li = ndf.lambda(wr);
+                        (2.0 * w * d * f / (mu * c * (1.0 + lo + li)), label)
+                    } else {
+                        (0.0, 0)
+                    }
+                }
+                Lobe::Transmission => match refract_through(wo, wm, d, eta) {
+                    Some(wt) if wt.z < 0.0 => {
+                        let li = ndf.lambda(Vec3::new(wt.x, wt.y, -wt.z));
+                        (2.0 * w * d * (1.0 - f) / (mu * c * (1.0 + lo + li)), label)
+                    }
+                    _ => (0.0, 0),
+                },
+            }
+        };
+        let piece = |a: f64, b: f64| {
+            let len = b - a;
+            let layer = (a / len).clamp(1e-9, 1.0);
+            let [v] = integrate_01_graded(&nodes, layer, |x| [eval(a + len * x).0]);
+            len * v
+        };
+        const CELLS: usize = 64;
+        let label = |x: f64| eval(x.max(1e-12)).1;
+        let mut total = 0.0;
+        let mut start = 0.0;
+        let mut prev = label(0.0);
+        for cell in 1..=CELLS {
+            let x1 = cell as f64 / CELLS as f64;
+            let now = label(x1);
+            if now != prev {
+                let (mut a, mut b) = ((cell - 1) as f64 / CELLS as f64, x1);
+                for _ in 0..60 {
+                    let m = 0.5 * (a + b);
+                    if label(m) == prev {
+                        a = m;
+                    } else {
+                        b = m;
+                    }
+                }
+                let edge = 0.5 * (a + b);
+                if prev != 0 {
+                    total += piece(start, edge);
+                }
+                start = edge;
+                prev = now;
+            }
+        }
+        if prev != 0 {
+            total += piece(start, 1.0);
+        }
+        total
+    };
+    let mut total = 0.0;
+    let mut prev = 0.0;
+    let mut k = 0;
+    loop {
+        let next = match graded_break(mu, k) {
+            Some(c) => acos(c),
+            None => core::f64::consts::PI,
+        };
+        let h = next - prev;
+        if h > 0.0 {
+            let [panel] = integrate_01_k(&nodes, |y| [inner(prev + h * y)]);
+            total += h * panel;
+        }
+        if next >= core::f64::consts::PI {
+            break;
+        }
+        prev = next;
+        k += 1;
+    }
+    total / core::f64::consts::PI
+}
+
+/// Hemispherical averages `[R_avg, T_avg]`, `X_avg = 2 ∫_0^1 X(μ) μ dμ`, of the two parts of
+/// [`dielectric_albedo_split`], by [`PANELS`] × [`ORDER`] Gauss-Legendre nodes in `μ`.
+///
+/// Reciprocity (derived from Walter et al. 2007's `f_t(wi, wo)/η_o² = f_t(wo, wi)/η_i²` for
+/// the radiance form): the energy form of [`dielectric_albedo_split`] obeys
+/// `f_t(wi, wo; η) = η² f_t(wo, wi; 1/η)`, hence `T_avg(1/η) = T_avg(η) / η²` (the rough
+/// generalisation of `1 − F_avg(1/η) = (1 − F_avg(η))/η²`).
+///
+/// Domain and errors as [`dielectric_albedo_split`] for `alpha` and `eta`.
+/// Reference: Walter et al., EGSR 2007; Kulla & Conty 2017 (`E_avg`).
+///
+/// # Errors
+/// As [`dielectric_albedo_split`].
+pub fn dielectric_average_albedo_split(alpha: f64, eta: f64) -> Result<[f64; 2], Error> {
+    dielectric_albedo_split(alpha, eta, 1.0)?;
+    let nodes = gauss_legendre::<ORDER>();
+    let [r, t] = integrate_01_k(&nodes, |mu| {
+        dielectric_albedo_split(alpha, eta, mu)
+            .unwrap_or([0.0; 2])
+            .map(|x| x * mu)
+    });
+    Ok([2.0 * r, 2.0 * t])
+}
+
+/// Hemispherical average `E_avg(α, η) = R_avg + T_avg` of [`dielectric_albedo`] (see
+/// [`dielectric_average_albedo_split`]). Result in `[0, 1]`.
+///
+/// Reference: Walter et al., EGSR 2007; Kulla & Conty 2017 (`E_avg`).
+///
+/// # Errors
+/// As [`dielectric_albedo_split`].
+pub fn dielectric_average_albedo(alpha: f64, eta: f64) -> Result<f64, Error> {
+    let [r, t] = dielectric_average_albedo_split(alpha, eta)?;
+    Ok(r + t)
+}
+
+// ---------------------------------------------------------------------------------------
+// Shipped tables of the dielectric E(μ, α, η) and E_avg(α, η)
+// ---------------------------------------------------------------------------------------
+
+mod dielectric_tables;
+
+/// Nodes of the shipped dielectric albedo tables along the view axis `s`
+/// ([`albedo_table_s`], the conductor tables' view coordinate).
+///
+/// (To change a size: set it here and run `cargo run --release -p brdf-tools --bin
+/// energy_tables -- --dielectric`, which rewrites `src/energy/dielectric_tables.rs`.)
+pub const DIELECTRIC_TABLE_MU: usize = 32;
+/// Nodes of the shipped dielectric albedo tables along the roughness axis `t`
+/// ([`albedo_table_t`]).
+pub const DIELECTRIC_TABLE_ALPHA: usize = 32;
+/// Nodes of the shipped dielectric albedo tables along the IOR axis
+/// ([`dielectric_table_u`]), per side (outside `η`, inside `1/η`).
+pub const DIELECTRIC_TABLE_ETA: usize = 16;
+/// Largest IOR of the dielectric tables: outside `η ∈ [1, 3]`, inside `η ∈ [1/3, 1]`.
+pub const DIELECTRIC_TABLE_ETA_MAX: f64 = 3.0;
+
+/// The IOR coordinate of the dielectric tables, `u = (η' − 1)/(η_max − 1)` ∈ `[0, 1]` with
+/// `η' = max(η, 1/η)` (the same `u` for an interface seen from outside, `η`, and from inside,
+/// `1/η`). Domain `η ∈ [1/3, 3]`.
+#[inline(always)]
+#[must_use]
+pub fn dielectric_table_u<R: Real>(eta: R) -> R {
+    let e = eta.max(eta.recip());
+    (e - R::one()) / R::from_f64(DIELECTRIC_TABLE_ETA_MAX - 1.0)
+}
+
+/// `(α, η)` of roughness node `j`, IOR node `k`, side `inside` of the dielectric tables.
+fn dielectric_table_alpha_eta(j: usize, k: usize, inside: bool) -> (f64, f64) {
+    let t = j as f64 / (DIELECTRIC_TABLE_ALPHA - 1) as f64;
+    let r = 0.01 + 0.99 * t;
+    let u = k as f64 / (DIELECTRIC_TABLE_ETA - 1) as f64;
+    let eta = 1.0 + (DIELECTRIC_TABLE_ETA_MAX - 1.0) * u;
+    (
+        (r * r).clamp(ALPHA_MIN, 1.0),
+        if inside { 1.0 / eta } else { eta },
+    )
+}
+
+/// Node `(i, j, k)` of the shipped dielectric `E(μ, α, η)` table of one side, computed now:
+/// [`dielectric_albedo`] at `α = (0.01 + 0.99 t_j)²`, `η' = 1 + 2 u_k` (`η = η'` outside,
+/// `1/η'` inside) and `μ = s_i² α/(1 + α − s_i²)` (`s_i, t_j, u_k` the nodes `i/(N − 1)` of
+/// [`albedo_table_s`], [`albedo_table_t`], [`dielectric_table_u`]), rounded to `f32`. The
+/// shipped value is this number bit for bit (`tests/energy_dielectric.rs`; the program
+/// `cargo run --release -p brdf-tools --bin energy_tables -- --dielectric` writes
+/// `src/energy/dielectric_tables.rs`).
+///
+/// Domain `i < DIELECTRIC_TABLE_MU`, `j < DIELECTRIC_TABLE_ALPHA`, `k < DIELECTRIC_TABLE_ETA`
+/// (panics outside).
+#[must_use]
+pub fn dielectric_albedo_table_node(inside: bool, i: usize, j: usize, k: usize) -> f32 {
+    assert!(
+        i < DIELECTRIC_TABLE_MU && j < DIELECTRIC_TABLE_ALPHA && k < DIELECTRIC_TABLE_ETA,
+        "node ({i}, {j}, {k})"
+    );
+    let (alpha, eta) = dielectric_table_alpha_eta(j, k, inside);
+    let sn = i as f64 / (DIELECTRIC_TABLE_MU - 1) as f64;
+    let x = sn * sn;
+    let mu = (x * alpha / (1.0 + alpha - x)).clamp(0.0, 1.0);
+    dielectric_albedo(alpha, eta, mu).unwrap_or(f64::NAN) as f32
+}
+
+/// Node `(j, k)` of the shipped dielectric `E_avg(α, η)` table of one side, computed now:
+/// [`dielectric_average_albedo`] at the `(α, η)` of [`dielectric_albedo_table_node`],
+/// rounded to `f32` (regenerated bit for bit by the same test and program).
+///
+/// Domain `j < DIELECTRIC_TABLE_ALPHA`, `k < DIELECTRIC_TABLE_ETA` (panics outside).
+#[must_use]
+pub fn dielectric_average_albedo_table_node(inside: bool, j: usize, k: usize) -> f32 {
+    assert!(
+        j < DIELECTRIC_TABLE_ALPHA && k < DIELECTRIC_TABLE_ETA,
+        "node ({j}, {k})"
+    );
+    let (alpha, eta) = dielectric_table_alpha_eta(j, k, inside);
+    dielectric_average_albedo(alpha, eta).unwrap_or(f64::NAN) as f32
+}
+
+/// The shipped dielectric tables: `E` (outside then inside; per side `DIELECTRIC_TABLE_ETA`
+/// blocks of `DIELECTRIC_TABLE_ALPHA` rows of `DIELECTRIC_TABLE_MU`) and `E_avg` (outside
+/// then inside; per side `DIELECTRIC_TABLE_ETA` rows of `DIELECTRIC_TABLE_ALPHA`), in `f32`.
+#[must_use]
+pub fn dielectric_albedo_tables() -> (&'static [f32], &'static [f32]) {
+    (
+        dielectric_tables::DIELECTRIC_E,
+        dielectric_tables::DIELECTRIC_E_AVG,
+    )
+}
+
+/// Directional albedo `E(μo, α, η)` of [`dielectric_albedo`] (GGX, height-correlated Smith,
+/// energy form of `f_t`) looked up in the shipped table: trilinear interpolation on the axes
+/// `s` = [`albedo_table_s`], `t` = [`albedo_table_t`], `u` = [`dielectric_table_u`], the
+/// side (`η ≥ 1` outside, `η < 1` inside) chosen per lane without a branch.
+///
+/// ```text
+/// E ≈ Σ_{a,b,c ∈ {0,1}} w_a(s) w_b(t) w_c(u) E[side][k+c][j+b][i+a],   w_0(x) = 1 − frac, w_1 = frac
+/// ```
+///
+/// Domain `α ∈ [1e-4, 1]`, `η ∈ [1/3, 3]`, `μ ∈ [0, 1]`; inputs outside are clamped to them.
+/// Accuracy against [`dielectric_albedo`]: measured in `tests/energy_dielectric.rs`.
+///
+/// References: Walter et al. 2007; the table serves Kulla & Conty 2017's dielectric
+/// compensation and Turquin 2019's energy scaling for glass.
+///
+/// ```
+/// use brdf::energy::{dielectric_albedo, dielectric_albedo_table};
+/// let e = dielectric_albedo_table(0.5_f32, 1.5, 0.3);
+/// assert!((f64::from(e) - dielectric_albedo(0.5, 1.5, 0.3)?).abs() < 2e-3);
+/// # Ok::<(), brdf::Error>(())
+/// ```
+#[inline(always)]
+#[must_use]
+pub fn dielectric_albedo_table<R: Real>(alpha: R, eta: R, cos_theta_o: R) -> R {
+    let (e, _) = dielectric_albedo_tables();
+    let (nx, ny, nz) = (
+        DIELECTRIC_TABLE_MU,
+        DIELECTRIC_TABLE_ALPHA,
+        DIELECTRIC_TABLE_ETA,
+    );
+    let alpha = alpha.clamp(R::from_f64(ALPHA_MIN), R::one());
+    let eta = eta.clamp(
+        R::from_f64(1.0 / DIELECTRIC_TABLE_ETA_MAX),
+        R::from_f64(DIELECTRIC_TABLE_ETA_MAX),
+    );
+    let mu = cos_theta_o.saturate();
+    let side = R::select(
+        eta.lt(R::one()),
+        R::from_f64((nx * ny * nz) as f64),
+        R::zero(),
+    );
+    let fx = albedo_table_s(mu, alpha).saturate() * R::from_f64((nx - 1) as f64);
+    let fy = albedo_table_t(alpha).saturate() * R::from_f64((ny - 1) as f64);
+    let fz = dielectric_table_u(eta).saturate() * R::from_f64((nz - 1) as f64);
+    let ix = fx.floor().min(R::from_f64((nx - 2) as f64));
+    let iy = fy.floor().min(R::from_f64((ny - 2) as f64));
+    let iz = fz.floor().min(R::from_f64((nz - 2) as f64));
+    let (u, v, w) = (fx - ix, fy - iy, fz - iz);
+    let (sx, sy) = (R::from_f64(nx as f64), R::from_f64((nx * ny) as f64));
+    let k = side + iz * sy + iy * sx + ix;
+    let lerp = |a: R, b: R, t: R| a + t * (b - a);
+    let plane = |k: R| {
+        let e0 = lerp(gather(e, k), gather(e, k + R::one()), u);
+        let e1 = lerp(gather(e, k + sx), gather(e, k + sx + R::one()), u);
+        lerp(e0, e1, v)
+    };
+    lerp(plane(k), plane(k + sy), w)
+}
+
+/// Hemispherical average `E_avg(α, η)` of [`dielectric_average_albedo`] looked up in the
+/// shipped table: bilinear on `t` = [`albedo_table_t`] and `u` = [`dielectric_table_u`], the
+/// side chosen per lane without a branch. Domain `α ∈ [1e-4, 1]`, `η ∈ [1/3, 3]` (clamped).
+/// Reference: Kulla & Conty 2017 (`E_avg`); Walter et al. 2007.
+#[inline(always)]
+#[must_use]
+pub fn dielectric_average_albedo_table<R: Real>(alpha: R, eta: R) -> R {
+    let (_, avg) = dielectric_albedo_tables();
+    let (ny, nz) = (DIELECTRIC_TABLE_ALPHA, DIELECTRIC_TABLE_ETA);
+    let alpha = alpha.clamp(R::from_f64(ALPHA_MIN), R::one());
+    let eta = eta.clamp(
+        R::from_f64(1.0 / DIELECTRIC_TABLE_ETA_MAX),
+        R::from_f64(DIELECTRIC_TABLE_ETA_MAX),
+    );
+    let side = R::select(eta.lt(R::one()), R::from_f64((ny * nz) as f64), R::zero());
+    let fy = albedo_table_t(alpha).saturate() * R::from_f64((ny - 1) as f64);
+    let fz = dielectric_table_u(eta).saturate() * R::from_f64((nz - 1) as f64);
+    let iy = fy.floor().min(R::from_f64((ny - 2) as f64));
+    let iz = fz.floor().min(R::from_f64((nz - 2) as f64));
+    let (v, w) = (fy - iy, fz - iz);
+    let k = side + iz * R::from_f64(ny as f64) + iy;
+    let sy = R::from_f64(ny as f64);
+    let lerp = |a: R, b: R, t: R| a + t * (b - a);
+    let e0 = lerp(gather(avg, k), gather(avg, k + R::one()), v);
+    let e1 = lerp(gather(avg, k + sy), gather(avg, k + sy + R::one()), v);
+    lerp(e0, e1, w)
+}
