@@ -5,6 +5,7 @@
 mod common;
 
 use brdf::{Real, Scalar, f32x4, f32x8, f32x16, f64x4, fast};
+use common::{horner, solve};
 use proptest::prelude::*;
 use std::f64::consts::{LN_2, SQRT_2};
 use std::sync::OnceLock;
@@ -13,36 +14,6 @@ use std::sync::OnceLock;
 // The fit: weighted minimax by the Remez exchange algorithm (independent re-implementation
 // of the procedure described in the module docs).
 // ---------------------------------------------------------------------------------------
-
-/// Solves `A x = b` by Gaussian elimination with partial pivoting.
-#[allow(clippy::needless_range_loop)]
-fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
-    let n = b.len();
-    for c in 0..n {
-        let p = (c..n)
-            .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
-            .unwrap();
-        a.swap(c, p);
-        b.swap(c, p);
-        for r in c + 1..n {
-            let f = a[r][c] / a[c][c];
-            for k in c..n {
-                a[r][k] -= f * a[c][k];
-            }
-            b[r] -= f * b[c];
-        }
-    }
-    let mut x = vec![0.0; n];
-    for r in (0..n).rev() {
-        let s: f64 = (r + 1..n).map(|k| a[r][k] * x[k]).sum();
-        x[r] = (b[r] - s) / a[r][r];
-    }
-    x
-}
-
-fn horner(c: &[f64], x: f64) -> f64 {
-    c.iter().rev().fold(0.0, |acc, &k| acc * x + k)
-}
 
 /// Sign-alternating local extrema of `r` on a uniform grid of `[a, b]`, merging runs of one
 /// sign to their largest member.

@@ -8,35 +8,8 @@ use brdf::fast::{self, COS_2PI_P32, COS_2PI_P64, SIN_2PI_Q32, SIN_2PI_Q64, sin_c
 use brdf::{Real, f32x4, f32x8, f32x16, f64x4};
 use std::f64::consts::FRAC_PI_2;
 
-/// Solves `A x = b` by Gaussian elimination with partial pivoting.
-#[allow(clippy::needless_range_loop)]
-fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
-    let n = b.len();
-    for c in 0..n {
-        let p = (c..n)
-            .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
-            .unwrap();
-        a.swap(c, p);
-        b.swap(c, p);
-        for r in c + 1..n {
-            let f = a[r][c] / a[c][c];
-            for k in c..n {
-                a[r][k] -= f * a[c][k];
-            }
-            b[r] -= f * b[c];
-        }
-    }
-    let mut x = vec![0.0; n];
-    for r in (0..n).rev() {
-        let s: f64 = (r + 1..n).map(|k| a[r][k] * x[k]).sum();
-        x[r] = (b[r] - s) / a[r][r];
-    }
-    x
-}
-
-fn horner(c: &[f64], x: f64) -> f64 {
-    c.iter().rev().fold(0.0, |acc, &k| acc * x + k)
-}
+mod common;
+use common::{horner, solve};
 
 /// `sin(π√w/2)/√w` (→ π/2 at 0).
 fn sin_target(w: f64) -> f64 {

@@ -214,3 +214,35 @@ fn ulps_counts_across_zero_and_precision() {
     assert_eq!(ulps(1.0f64, 1.0 + f64::EPSILON), 1);
 }
 pub mod chi2;
+
+/// Solves `A x = b` by Gaussian elimination with partial pivoting.
+#[allow(clippy::needless_range_loop)]
+/// (The polynomial fits of `tests/fast.rs` and `tests/sin_cos_2pi.rs`.)
+pub fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
+    let n = b.len();
+    for c in 0..n {
+        let p = (c..n)
+            .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
+            .unwrap();
+        a.swap(c, p);
+        b.swap(c, p);
+        for r in c + 1..n {
+            let f = a[r][c] / a[c][c];
+            for k in c..n {
+                a[r][k] -= f * a[c][k];
+            }
+            b[r] -= f * b[c];
+        }
+    }
+    let mut x = vec![0.0; n];
+    for r in (0..n).rev() {
+        let s: f64 = (r + 1..n).map(|k| a[r][k] * x[k]).sum();
+        x[r] = (b[r] - s) / a[r][r];
+    }
+    x
+}
+
+/// `c₀ + c₁x + c₂x² + …` by Horner's rule.
+pub fn horner(c: &[f64], x: f64) -> f64 {
+    c.iter().rev().fold(0.0, |acc, &k| acc * x + k)
+}
