@@ -229,6 +229,17 @@ fn albedo_with<D: SmithLambda<f64>, const K: usize>(
     };
     // The horizon bound v_h(φ) turns from ≈ 1 to ≈ 0 where cos φm crosses a band of width
     // ~μo around 0: panels in φm graded geometrically in cos φm = ±μo·4^k resolve it.
+    graded_phi_average(mu, &nodes, inner)
+}
+
+/// `(1/π) ∫_0^π g(φ) dφ` by [`integrate_01_k`] panels between the break points
+/// `acos(±μ·4^k)` ([`graded_break`]): graded towards `φ = π/2`, where the horizon of a
+/// view at `cos θo = μ` sweeps through a band of width `~μ`. One body for the albedo rules.
+fn graded_phi_average<const K: usize>(
+    mu: f64,
+    nodes: &([f64; ORDER], [f64; ORDER]),
+    mut g: impl FnMut(f64) -> [f64; K],
+) -> [f64; K] {
     let mut total = [0.0; K];
     let mut prev = 0.0; // φ of the previous break point
     let mut k = 0;
@@ -240,7 +251,7 @@ fn albedo_with<D: SmithLambda<f64>, const K: usize>(
         };
         let h = next - prev;
         if h > 0.0 {
-            let panel = integrate_01_k(&nodes, |y| inner(prev + h * y));
+            let panel = integrate_01_k(nodes, |y| g(prev + h * y));
             for (t, p) in total.iter_mut().zip(panel) {
                 *t += h * p;
             }
@@ -864,26 +875,8 @@ fn interface_part(ndf: &Ggx<f64>, alpha: f64, eta: f64, cos_theta_o: f64, lobe: 
         }
         total
     };
-    let mut total = 0.0;
-    let mut prev = 0.0;
-    let mut k = 0;
-    loop {
-        let next = match graded_break(mu, k) {
-            Some(c) => acos(c),
-            None => core::f64::consts::PI,
-        };
-        let h = next - prev;
-        if h > 0.0 {
-            let [panel] = integrate_01_k(&nodes, |y| [inner(prev + h * y)]);
-            total += h * panel;
-        }
-        if next >= core::f64::consts::PI {
-            break;
-        }
-        prev = next;
-        k += 1;
-    }
-    total / core::f64::consts::PI
+    let [average] = graded_phi_average(mu, &nodes, |phi| [inner(phi)]);
+    average
 }
 
 /// Hemispherical averages `[R_avg, T_avg]`, `X_avg = 2 ∫_0^1 X(μ) μ dμ`, of the two parts of
