@@ -51,7 +51,7 @@ pub const FIT_TERMS: usize = 20;
 ///
 /// ```text
 /// t(μ) = ((1 + 2α) μ − α) / (μ + α)          maps μ ∈ [0, 1] onto t ∈ [−1, 1]
-/// E(μ) ≈ clamp( Σ_{k<K} c_k T_k(t(μ)), 0, 1 ),    K = FIT_TERMS
+/// E(μ) ≈ clamp( Σ_{k<K} c_k(α) T_k(t(μ)), 0, 1 ),    K = FIT_TERMS
 /// ```
 ///
 /// **Why this warp.** For small `α` the albedo depends on `μ` mainly through `μ/α` (the
@@ -59,31 +59,59 @@ pub const FIT_TERMS: usize = 20;
 /// `t` spreads that band over the whole interval (`μ = α` is `t ≈ 0`), so one short series
 /// serves every `α` in `[1e-4, 1]`; for `α = 1` the warp is mild (`t = (3μ − 1)/(μ + 1)`).
 ///
-/// **Fit.** `c_k` interpolate [`energy::directional_albedo`] at the `K` Chebyshev-Gauss nodes
-/// `t_j = cos(π (j + ½)/K)` (discrete orthogonality: `c_k = (2/K) Σ_j E(μ(t_j)) T_k(t_j)`,
-/// `c_0` halved). Error against a direct `directional_albedo` (measured in
-/// `tests/multiscatter.rs`, α ∈ {1e-4, …, 1}, 20 cosines): on `μ ∈ [0.05, 1]` at most
-/// 4.7e-5 for GGX (peak at α = 1, μ = 0.05) and 6.4e-5 for Beckmann (α = 0.03, μ = 0.15);
-/// at grazing `μ ∈ [1e-3, 0.05)` at most 3.7e-4 for GGX (α = 1, μ = 0.003, where `E(μ)`
-/// is least smooth) and 6.9e-5 for Beckmann. (`directional_albedo` itself is within
-/// 1.5e-5 of the adaptive reference, `tests/energy.rs`.) With 12 terms the GGX error
-/// would be 2e-4, with 32 terms 4e-6.
+/// **The series of one `α`** ([`AlbedoFit::integrate`]): `c_k(α)` interpolate
+/// [`energy::directional_albedo`] at the `K` Chebyshev-Gauss nodes `t_j = cos(π (j + ½)/K)`
+/// (discrete orthogonality: `c_k = (2/K) Σ_j E(μ(t_j)) T_k(t_j)`, `c_0` halved). Error
+/// against a direct `directional_albedo` (measured in `tests/multiscatter.rs`, α ∈ {1e-4,
+/// …, 1}, 20 cosines): on `μ ∈ [0.05, 1]` at most 4.4e-5 for GGX (peak at α = 1, μ = 0.05)
+/// and 6.4e-5 for Beckmann (α = 0.03, μ = 0.15); at grazing `μ ∈ [1e-3, 0.05)` at most
+/// 3.4e-4 for GGX (α = 1, μ = 0.003, where `E(μ)` is least smooth) and 6.9e-5 for
+/// Beckmann. (`directional_albedo` itself is within 1.5e-5 of the adaptive reference,
+/// `tests/energy.rs`.) With 12 terms the GGX error would be 2e-4, with 32 terms 4e-6.
+///
+/// **The coefficients as functions of `α`** ([`AlbedoFit::new`]): the crate ships
+/// `c_k(α_m)` (rounded to `f32`, [`albedo_fit_table`]) at Chebyshev-Gauss nodes of a warped
+/// roughness on two segments, and interpolates them (Chebyshev interpolation, in the
+/// barycentric form of Berrut & Trefethen 2004, eq. 5.3 with first-kind weights
+/// `(−1)^m sin(π (m + ½)/M)`):
+///
+/// ```text
+/// α ∈ [1e-4, α_s]:  τ affine in ln α,  FIT_TABLE_LOW  = 8 nodes
+/// α ∈ [α_s, 1]:     τ affine in √α,    FIT_TABLE_HIGH = 32 nodes
+/// α_s = 1e-6 (1 − t_0)/(1 + t_0 − 2e-6) ≈ 6.48e-4,   t_0 = cos(π (K − ½)/K)
+/// c_k(α) = Σ_m w_m c_k(α_m)/(τ − τ_m) / Σ_m w_m/(τ − τ_m)
+/// ```
+///
+/// The split `α_s` is where the most grazing fit node `μ(t_0) ≈ 1.5e-3 α` reaches
+/// `directional_albedo`'s cosine floor `1e-6`: below it that node's value is `E(1e-6)`, so
+/// `c_k(α)` has a kink there (a single series in any warp stalls near 2e-5 from it).
+/// Warps chosen by measuring (a 20-term fit at 92 roughnesses between the nodes, the worst
+/// `|Σ Δc_k T_k(t)|` over `t`): on `[α_s, 1]` with 32 nodes, `√α` gives 2.7e-11 (GGX) and
+/// 1.8e-7 (Beckmann), `α^(1/3)` 2.5e-11 and 6.9e-7, `ln α` 1.0e-8 and 3.6e-5 (the small-`α`
+/// end is `c_k(0) + O(α)`, so `ln α` wastes nodes there); on `[1e-4, α_s]`, `ln α` with 8
+/// nodes gives 8e-11. **Measured added error** of [`AlbedoFit::new`] against
+/// [`AlbedoFit::integrate`] (the `f32` rounding of the table included; the midpoint in `τ`
+/// of every pair of neighbouring nodes and the segment ends, 201 cosines uniform in `t`,
+/// `tests/multiscatter.rs`): at most 4.6e-8 (GGX) and 2.0e-7 (Beckmann, at α = 0.17,
+/// μ = 1) in `E(μ)`, 3.4e-8 and 3.3e-8 in `E_avg`, against the target 1e-5. Against
+/// [`energy::directional_albedo`] (24 cosines in `[1e-3, 1]` at the same roughnesses) both
+/// fits err by at most 3.57e-4 (GGX, grazing) and 7.47e-5 (Beckmann); the tabulated one
+/// by at most 2.0e-7 more.
 ///
 /// **Evaluation.** One division (the warp) and `K − 1` steps of Clenshaw's recurrence
 /// `b_k = c_k + 2t b_{k+1} − b_{k+2}` (stable in `f32`), branch-free: the same body for
 /// `f32`, `f64` and SIMD lanes. Domain: `μ ∈ [0, 1]` (clamped).
 ///
-/// **Cost of construction.** `K` calls of [`energy::directional_albedo`] (each 4096 to
-/// ~45 000 integrand evaluations, more at grazing nodes): 12 to 62 ms per fit, measured on
-/// an AMD EPYC (Zen 4) core with the test profile (`opt-level = 2`), on a loaded machine
-/// (GGX α = 0.5: 12 ms; GGX α = 0.05: 49 ms; Beckmann α = 1: 62 ms). That is far above
-/// the per-material budget of a renderer that builds materials while loading a scene:
-/// fit once per roughness and share the fit (`KullaConty::from_parts`,
-/// `Turquin::from_parts`).
+/// **Cost of construction.** [`AlbedoFit::new`]: one interpolation (8 or 32 nodes × `K`
+/// coefficients, no allocation, no quadrature of `E`) and `E_avg` of the series (64
+/// Clenshaw sums): about 2 µs (`cargo bench --bench construction`, AMD EPYC (Zen 4));
+/// [`AlbedoFit::integrate`]: `K` calls of [`energy::directional_albedo`], 11–47 ms.
+/// Building thousands of materials of distinct roughness at scene load is affordable.
 ///
 /// References: Kulla & Conty 2017 (the role of `E` and `E_avg`); L. N. Trefethen,
 /// *Approximation Theory and Approximation Practice*, SIAM 2013 (Chebyshev interpolation,
-/// Clenshaw's recurrence).
+/// Clenshaw's recurrence); J.-P. Berrut, L. N. Trefethen, "Barycentric Lagrange
+/// Interpolation", SIAM Review 46(3), 2004.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AlbedoFit<R> {
     /// `c_0 … c_{K−1}` (`c_0` already halved).
@@ -100,13 +128,58 @@ pub struct AlbedoFit<R> {
 }
 
 impl<S: Scalar> AlbedoFit<S> {
-    /// Fits `E(μ)` of `distribution` with slope parameter `alpha ∈ [1e-4, 1]`.
+    /// `E(μ)` of `distribution` with slope parameter `alpha ∈ [1e-4, 1]`, from the shipped
+    /// coefficient table ([`albedo_fit_table`]) by Chebyshev interpolation in the warped
+    /// roughness (see the type's docs): no quadrature, no allocation, about 2 µs. Within
+    /// 2.0e-7 of [`AlbedoFit::integrate`] (measured; the type's docs).
     ///
-    /// Cost: `FIT_TERMS` albedo quadratures, 12–62 ms (see the type's docs).
+    /// # Errors
+    /// [`Error::NotFinite`] or [`Error::OutOfDomain`] (`param` `"alpha"`) for `alpha`
+    /// outside `[1e-4, 1]`, as [`energy::directional_albedo`].
+    pub fn new(distribution: Distribution, alpha: f64) -> Result<Self, Error> {
+        crate::error::check("alpha", alpha, "[1e-4, 1]", |a| {
+            (ALPHA_MIN..=1.0).contains(&a)
+        })?;
+        let table = albedo_fit_table(distribution);
+        let (first, n, tau) = fit_segment(alpha);
+        let mut num = [0.0; FIT_TERMS];
+        let mut den = 0.0;
+        for m in 0..n {
+            let row = &table[(first + m) * FIT_TERMS..(first + m + 1) * FIT_TERMS];
+            let angle = core::f64::consts::PI * (m as f64 + 0.5) / n as f64;
+            let d = tau - Real::cos(angle);
+            if d == 0.0 {
+                // At a node the interpolant is the node.
+                num = core::array::from_fn(|k| f64::from(row[k]));
+                den = 1.0;
+                break;
+            }
+            let sign = if m % 2 == 0 { 1.0 } else { -1.0 };
+            let w = sign * Real::sin(angle) / d;
+            den += w;
+            for (acc, &c) in num.iter_mut().zip(row) {
+                *acc += w * f64::from(c);
+            }
+        }
+        Ok(Self::from_coefficients(
+            distribution,
+            alpha,
+            num.map(|c| c / den),
+        ))
+    }
+
+    /// `E(μ)` of `distribution` with slope parameter `alpha ∈ [1e-4, 1]`, fitted now:
+    /// [`FIT_TERMS`] quadratures [`energy::directional_albedo`] at the Chebyshev nodes of
+    /// `t` (the type's docs). The definition the shipped table ([`albedo_fit_table`]) is
+    /// generated from, for users who want the fit without the table's interpolation error
+    /// (≤ 2.0e-7) and for the tests.
+    ///
+    /// Cost: 11–47 ms (`cargo bench --bench construction`, AMD EPYC (Zen 4)); use
+    /// [`AlbedoFit::new`] at scene load.
     ///
     /// # Errors
     /// As [`energy::directional_albedo`] for `alpha`.
-    pub fn new(distribution: Distribution, alpha: f64) -> Result<Self, Error> {
+    pub fn integrate(distribution: Distribution, alpha: f64) -> Result<Self, Error> {
         let mut values = [0.0; FIT_TERMS];
         for (j, v) in values.iter_mut().enumerate() {
             *v = energy::directional_albedo(distribution, alpha, mu_of_t(alpha, node(j)))?;
@@ -122,15 +195,126 @@ impl<S: Scalar> AlbedoFit<S> {
             *c = 2.0 * s / k;
         }
         coeffs[0] *= 0.5;
+        Ok(Self::from_coefficients(distribution, alpha, coeffs))
+    }
+
+    /// The fit from its coefficients (`c_0` halved): the warp's constants and `E_avg`.
+    fn from_coefficients(distribution: Distribution, alpha: f64, coeffs: [f64; FIT_TERMS]) -> Self {
         let average = series_average(&coeffs, alpha);
-        Ok(Self {
+        Self {
             coeffs: coeffs.map(S::of),
             p: S::of(1.0 + 2.0 * alpha),
             q: S::of(alpha),
             average,
             distribution,
             alpha,
-        })
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The shipped coefficient table c_k(α_m)
+// ---------------------------------------------------------------------------------------------
+
+mod fit_tables;
+
+/// Nodes of the shipped coefficient table on the small-roughness segment `α ∈ [1e-4, α_s]`
+/// (Chebyshev-Gauss in `ln α`; see [`AlbedoFit`]).
+///
+/// (To change a size: set it here and run `cargo run --release -p brdf-tools --bin
+/// energy_tables -- --fit`, which rewrites `src/models/multiscatter/fit_tables.rs`; the table
+/// is a slice, so the crate compiles before it is regenerated, and `tests/multiscatter.rs`
+/// checks its length.)
+pub const FIT_TABLE_LOW: usize = 8;
+/// Nodes of the shipped coefficient table on `α ∈ [α_s, 1]` (Chebyshev-Gauss in `√α`).
+pub const FIT_TABLE_HIGH: usize = 32;
+/// Roughness nodes of the shipped coefficient table: [`FIT_TABLE_LOW`] then
+/// [`FIT_TABLE_HIGH`].
+pub const FIT_TABLE_NODES: usize = FIT_TABLE_LOW + FIT_TABLE_HIGH;
+
+/// Smallest `α` of the fits (and of [`energy::directional_albedo`]'s domain).
+const ALPHA_MIN: f64 = 1e-4;
+/// The cosine floor of [`energy::directional_albedo`] (it clamps `μ` to `[1e-6, 1]`).
+const MU_FLOOR: f64 = 1e-6;
+
+/// `α_s`, where the most grazing fit node `μ(t_0) = α (1 + t_0)/(1 + 2α − t_0)` equals
+/// [`MU_FLOOR`]: `α_s = 1e-6 (1 − t_0)/(1 + t_0 − 2e-6)` ≈ 6.48e-4.
+fn split_alpha() -> f64 {
+    let t0 = node(FIT_TERMS - 1);
+    MU_FLOOR * (1.0 - t0) / (1.0 + t0 - 2.0 * MU_FLOOR)
+}
+
+/// The segment of `alpha`: (its first row in the table, its node count, `τ ∈ [−1, 1]`).
+fn fit_segment(alpha: f64) -> (usize, usize, f64) {
+    let s = split_alpha();
+    if alpha < s {
+        let (lo, hi) = (Real::ln(ALPHA_MIN), Real::ln(s));
+        let tau = 2.0 * (Real::ln(alpha) - lo) / (hi - lo) - 1.0;
+        (0, FIT_TABLE_LOW, tau.clamp(-1.0, 1.0))
+    } else {
+        let lo = Real::sqrt(s);
+        let tau = 2.0 * (Real::sqrt(alpha) - lo) / (1.0 - lo) - 1.0;
+        (FIT_TABLE_LOW, FIT_TABLE_HIGH, tau.clamp(-1.0, 1.0))
+    }
+}
+
+/// `α` of roughness node `m` of the shipped coefficient table: on the low segment
+/// (`m < FIT_TABLE_LOW`, local index `i = m`, `M = FIT_TABLE_LOW`)
+/// `α = exp(ln 1e-4 + (τ_i + 1)/2 · (ln α_s − ln 1e-4))`, on the high one (`i = m −
+/// FIT_TABLE_LOW`, `M = FIT_TABLE_HIGH`) `α = (√α_s + (τ_i + 1)/2 · (1 − √α_s))²`, with
+/// `τ_i = cos(π (i + ½)/M)` (so `α` descends within each segment; `α_s` as in [`AlbedoFit`]).
+///
+/// Domain `m < FIT_TABLE_NODES` (panics outside).
+#[must_use]
+pub fn albedo_fit_alpha(m: usize) -> f64 {
+    assert!(m < FIT_TABLE_NODES, "node {m}");
+    let s = split_alpha();
+    let (i, n) = if m < FIT_TABLE_LOW {
+        (m, FIT_TABLE_LOW)
+    } else {
+        (m - FIT_TABLE_LOW, FIT_TABLE_HIGH)
+    };
+    let tau = Real::cos(core::f64::consts::PI * (i as f64 + 0.5) / n as f64);
+    let x = 0.5 * (tau + 1.0);
+    let alpha = if m < FIT_TABLE_LOW {
+        let (lo, hi) = (Real::ln(ALPHA_MIN), Real::ln(s));
+        Real::exp(lo + x * (hi - lo))
+    } else {
+        let lo = Real::sqrt(s);
+        let r = lo + x * (1.0 - lo);
+        r * r
+    };
+    alpha.clamp(ALPHA_MIN, 1.0)
+}
+
+/// Row `m` of the shipped coefficient table, computed now: the coefficients `c_0 … c_{K−1}`
+/// (`c_0` halved) of [`AlbedoFit::integrate`] at `α` = [`albedo_fit_alpha`]`(m)`, rounded to
+/// `f32`. The shipped row is this, bit for bit (`tests/multiscatter.rs` regenerates rows and
+/// fails on any difference; `cargo run --release -p brdf-tools --bin energy_tables -- --fit`
+/// writes `src/models/multiscatter/fit_tables.rs`).
+///
+/// Why `f32`: its rounding adds at most ~1e-7 to `E(μ)` (measured with the interpolation,
+/// [`AlbedoFit`]), two orders below the 1e-5 target, and a bit-for-bit regeneration in
+/// `f32` does not depend on the last bits of the platform's `exp`/`sin`/`cos` (as for the
+/// albedo tables of [`energy`]); the table is 6.4 KB.
+///
+/// Domain `m < FIT_TABLE_NODES` (panics outside).
+#[must_use]
+pub fn albedo_fit_node(distribution: Distribution, m: usize) -> [f32; FIT_TERMS] {
+    let alpha = albedo_fit_alpha(m);
+    match AlbedoFit::<f64>::integrate(distribution, alpha) {
+        Ok(fit) => fit.coeffs.map(|c| c as f32),
+        Err(_) => [f32::NAN; FIT_TERMS],
+    }
+}
+
+/// The shipped coefficient table of one distribution: [`FIT_TABLE_NODES`] rows (roughness
+/// node `m`, `α` = [`albedo_fit_alpha`]`(m)`) of [`FIT_TERMS`] coefficients, row-major, `f32`.
+#[must_use]
+pub fn albedo_fit_table(distribution: Distribution) -> &'static [f32] {
+    match distribution {
+        Distribution::Ggx => fit_tables::GGX_FIT,
+        Distribution::Beckmann => fit_tables::BECKMANN_FIT,
     }
 }
 
@@ -155,6 +339,13 @@ impl<R: Real> AlbedoFit<R> {
     #[must_use]
     pub fn average(&self) -> f64 {
         self.average
+    }
+
+    /// The coefficients `c_0 … c_{K−1}` of the series (`c_0` already halved: `E =
+    /// Σ_k c_k T_k(t)` before the clamp).
+    #[must_use]
+    pub fn coefficients(&self) -> &[R; FIT_TERMS] {
+        &self.coeffs
     }
 
     /// The distribution the series was fitted for.
