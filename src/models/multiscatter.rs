@@ -308,6 +308,15 @@ pub fn albedo_fit_node(distribution: Distribution, m: usize) -> [f32; FIT_TERMS]
     }
 }
 
+/// The 16-point Gauss-Legendre rule on `[0, 1]` (nodes, weights) with which [`AlbedoFit`]
+/// integrates `E_avg` of its series, as shipped: [`energy::gauss_legendre`]`::<16>()`
+/// computed by the generator (bit for bit, `tests/multiscatter.rs`), so that a construction
+/// does not spend 5 µs on Newton's method for the Legendre roots.
+#[must_use]
+pub fn albedo_fit_rule() -> (&'static [f64; 16], &'static [f64; 16]) {
+    (&fit_tables::GL_X, &fit_tables::GL_W)
+}
+
 /// The shipped coefficient table of one distribution: [`FIT_TABLE_NODES`] rows (roughness
 /// node `m`, `α` = [`albedo_fit_alpha`]`(m)`) of [`FIT_TERMS`] coefficients, row-major, `f32`.
 #[must_use]
@@ -389,12 +398,15 @@ fn mu_of_t(alpha: f64, t: f64) -> f64 {
 /// `E_avg = 1 − 2 ∫_0^1 (1 − E(μ)) μ dμ` of the series, integrated in `t`
 /// (`dμ/dt = 2α(1 + α)/(1 + 2α − t)²`). The loss `1 − E` is written out because the
 /// Jacobian grows like `1/α` towards `t = 1` (normal view), where `1 − E` vanishes: the
-/// product is smooth, `E μ dμ/dt` is not.
+/// product is smooth, `E μ dμ/dt` is not. The 16-point Gauss-Legendre rule on `[0, 1]` is
+/// [`energy::gauss_legendre`]`::<16>()` as shipped in the generated table file (computing it
+/// takes 5 µs, two thirds of a construction; `tests/multiscatter.rs` checks the shipped
+/// rule against the function bit for bit).
 fn series_average(coeffs: &[f64; FIT_TERMS], alpha: f64) -> f64 {
-    let (x, w) = energy::gauss_legendre::<16>();
+    let (x, w) = (&fit_tables::GL_X, &fit_tables::GL_W);
     let mut sum = 0.0;
     for panel in 0..4 {
-        for (&xk, &wk) in x.iter().zip(&w) {
+        for (&xk, &wk) in x.iter().zip(w) {
             let t = -1.0 + 0.5 * (f64::from(panel) + xk);
             let mu = mu_of_t(alpha, t);
             let jac =
@@ -501,14 +513,13 @@ pub trait FresnelAverage<const N: usize> {
     fn normal_reflectance(&self) -> [f64; N];
 }
 
-/// `F_avg` and `F(1)` by quadrature, on the term splatted to `f64`.
-fn by_quadrature<F, const N: usize>(f: &F) -> ([f64; N], [f64; N])
+/// `F_avg` by quadrature, on the term splatted to `f64`.
+fn by_quadrature<F, const N: usize>(f: &F) -> [f64; N]
 where
     F: Splat,
     F::On<f64>: FresnelTerm<f64, N>,
 {
-    let f64s = f.splat::<f64>();
-    (energy::fresnel_average(&f64s), f64s.eval(1.0))
+    energy::fresnel_average(&f.splat::<f64>())
 }
 
 impl<S: Scalar, const N: usize> FresnelAverage<N> for Schlick<S, N> {
@@ -541,20 +552,20 @@ impl<S: Scalar, const N: usize> FresnelAverage<N> for F82Tint<S, N> {
 impl<S: Scalar, const N: usize, P: crate::fast::SqrtFn> FresnelAverage<N> for Conductor<S, N, P> {
     /// [`energy::fresnel_average`] of the exact complex-IOR reflectance, per channel.
     fn average(&self) -> [f64; N] {
-        by_quadrature(self).0
+        by_quadrature(self)
     }
     fn normal_reflectance(&self) -> [f64; N] {
-        by_quadrature(self).1
+        self.splat::<f64>().eval(1.0)
     }
 }
 
 impl<S: Scalar, const N: usize> FresnelAverage<N> for Dielectric<S, N> {
     /// [`energy::fresnel_average`] of the exact dielectric reflectance.
     fn average(&self) -> [f64; N] {
-        by_quadrature(self).0
+        by_quadrature(self)
     }
     fn normal_reflectance(&self) -> [f64; N] {
-        by_quadrature(self).1
+        self.splat::<f64>().eval(1.0)
     }
 }
 

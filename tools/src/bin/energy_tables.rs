@@ -163,7 +163,7 @@ fn fit_source() -> String {
          //! Row-major: row `m` (first `FIT_TABLE_LOW` nodes of `[1e-4, α_s]`, Chebyshev-Gauss in\n\
          //! `ln α`, then `FIT_TABLE_HIGH` nodes of `[α_s, 1]`, Chebyshev-Gauss in `√α`) holds\n\
          //! `FIT_TERMS` coefficients. `tests/multiscatter.rs` regenerates rows and fails on any\n\
-         //! difference.\n\n\
+         //! difference. Then the Gauss-Legendre rule of `E_avg` (checked the same way).\n\n\
          #![allow(clippy::approx_constant, clippy::unreadable_literal)]\n\n",
     );
     writeln!(
@@ -184,6 +184,20 @@ fn fit_source() -> String {
                 let line: Vec<String> = chunk.iter().map(|v| format!("{v:?},")).collect();
                 writeln!(out, "    {}", line.join(" ")).unwrap();
             }
+        }
+        writeln!(out, "];").unwrap();
+    }
+    let (x, w) = brdf::energy::gauss_legendre::<16>();
+    out.push_str(
+        "\n// The 16-point Gauss-Legendre rule on [0, 1] of `brdf::energy::gauss_legendre::<16>()`\n\
+         // (nodes ascending, weights), with which `AlbedoFit` integrates `E_avg`.\n",
+    );
+    for (name, v) in [("GL_X", x), ("GL_W", w)] {
+        writeln!(out, "#[rustfmt::skip]").unwrap();
+        writeln!(out, "pub(super) const {name}: [f64; 16] = [").unwrap();
+        for chunk in v.chunks(4) {
+            let line: Vec<String> = chunk.iter().map(|v| format!("{v:?},")).collect();
+            writeln!(out, "    {}", line.join(" ")).unwrap();
         }
         writeln!(out, "];").unwrap();
     }
