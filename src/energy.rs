@@ -364,7 +364,9 @@ pub fn average_albedo(distribution: Distribution, alpha: f64) -> Result<f64, Err
 #[must_use]
 pub fn fresnel_average<F: FresnelTerm<f64, N>, const N: usize>(fresnel: &F) -> [f64; N] {
     let nodes = gauss_legendre::<ORDER>();
-    core::array::from_fn(|c| 2.0 * integrate_01(&nodes, |mu| fresnel.eval(mu)[c] * mu))
+    // One evaluation per node for all channels (the same sums, bit for bit, as one
+    // integral per channel: `integrate_01_k`).
+    integrate_01_k(&nodes, |mu| fresnel.eval(mu).map(|f| f * mu)).map(|v| 2.0 * v)
 }
 
 /// `F_avg` of Schlick's approximation `F = F0 + (1 − F0)(1 − μ)⁵`, in closed form:

@@ -9,8 +9,10 @@
 //!
 //! Both need the directional albedo `E(μ)` of the wrapped lobe with `F = 1` at every
 //! evaluation. [`AlbedoFit`] represents it, for the model's `α`, by a short Chebyshev series
-//! in a warped cosine, fitted at construction to [`energy::directional_albedo`] and evaluated
-//! branch-free on lanes (one division and a Clenshaw recurrence).
+//! in a warped cosine, fitted to [`energy::directional_albedo`] and evaluated branch-free on
+//! lanes (one division and a Clenshaw recurrence). Its coefficients ship as a table over `α`
+//! (generated from the quadrature, `src/models/multiscatter/fit_tables.rs`), so a
+//! construction is an interpolation of a few microseconds, not a quadrature.
 //!
 //! # Scope
 //!
@@ -104,9 +106,13 @@ pub const FIT_TERMS: usize = 20;
 ///
 /// **Cost of construction.** [`AlbedoFit::new`]: one interpolation (8 or 32 nodes × `K`
 /// coefficients, no allocation, no quadrature of `E`) and `E_avg` of the series (64
-/// Clenshaw sums): about 2 µs (`cargo bench --bench construction`, AMD EPYC (Zen 4));
-/// [`AlbedoFit::integrate`]: `K` calls of [`energy::directional_albedo`], 11–47 ms.
-/// Building thousands of materials of distinct roughness at scene load is affordable.
+/// Clenshaw sums with the shipped Gauss-Legendre rule, [`albedo_fit_rule`]): COST_NEW
+/// (`cargo bench --bench construction`, AMD EPYC (Zen 4), one core, release).
+/// [`AlbedoFit::integrate`]: `K` calls of [`energy::directional_albedo`], COST_INT on the
+/// same machine (GGX α = 0.5 fastest, GGX α = 3e-4 and Beckmann α = 1 slowest). 10 000
+/// materials of distinct roughness cost tens of milliseconds to build, at scene-load speed;
+/// sharing one fit between materials of the same roughness (`KullaConty::from_parts`,
+/// `Turquin::from_parts`) is no longer needed for speed.
 ///
 /// References: Kulla & Conty 2017 (the role of `E` and `E_avg`); L. N. Trefethen,
 /// *Approximation Theory and Approximation Practice*, SIAM 2013 (Chebyshev interpolation,
@@ -130,7 +136,7 @@ pub struct AlbedoFit<R> {
 impl<S: Scalar> AlbedoFit<S> {
     /// `E(μ)` of `distribution` with slope parameter `alpha ∈ [1e-4, 1]`, from the shipped
     /// coefficient table ([`albedo_fit_table`]) by Chebyshev interpolation in the warped
-    /// roughness (see the type's docs): no quadrature, no allocation, about 2 µs. Within
+    /// roughness (see the type's docs): no quadrature, no allocation, COST_NEW. Within
     /// 2.0e-7 of [`AlbedoFit::integrate`] (measured; the type's docs).
     ///
     /// # Errors
@@ -174,7 +180,7 @@ impl<S: Scalar> AlbedoFit<S> {
     /// generated from, for users who want the fit without the table's interpolation error
     /// (≤ 2.0e-7) and for the tests.
     ///
-    /// Cost: 11–47 ms (`cargo bench --bench construction`, AMD EPYC (Zen 4)); use
+    /// Cost: COST_INT (`cargo bench --bench construction`, AMD EPYC (Zen 4)); use
     /// [`AlbedoFit::new`] at scene load.
     ///
     /// # Errors
@@ -606,7 +612,7 @@ impl<const N: usize> FresnelAverage<N> for NoFresnel {
 /// construction), `E_avg = 2∫E(μ)μ dμ` its average (of the same series, so the added lobe
 /// integrates to exactly `F_ms (1 − E(μo))`), `F_avg` the Fresnel term's average
 /// ([`FresnelAverage`]). With `F = 1` the albedo is `E(μo) + (1 − E(μo)) = 1`: the white
-/// furnace closes (up to the error of the series: measured `|ρ − 1| ≤ 7.2e-5` for GGX and
+/// furnace closes (up to the error of the series: measured `|ρ − 1| ≤ 5.5e-5` for GGX and
 /// Beckmann, `α ∈ [1e-4, 1]`, `μo ∈ [0.05, 1]`; the test's bound is 1e-3). `F_ms` sums the
 /// bounces `k ≥ 2` of a walk that leaves with probability `E_avg` and is weighted by
 /// `F_avg` per bounce: an approximation. Against the random walk on the Smith microsurface
@@ -671,9 +677,13 @@ where
     D: AlbedoNdf,
     F: FresnelAverage<N>,
 {
-    /// Wraps a Cook-Torrance lobe with height-correlated Smith masking: fits `E(μ)` for its
-    /// NDF and `α` ([`AlbedoFit::new`], the whole cost: 12–62 ms), takes `F_avg` from its
-    /// Fresnel term.
+    /// Wraps a Cook-Torrance lobe with height-correlated Smith masking: `E(μ)` for its NDF
+    /// and `α` from the shipped table ([`AlbedoFit::new`], COST_NEW), `F_avg` from its
+    /// Fresnel term ([`FresnelAverage`]: closed forms for Schlick and F82-tint, a 64-point
+    /// quadrature for the exact conductor and dielectric). Measured (`cargo bench --bench
+    /// construction`, AMD EPYC (Zen 4)): COST_KC for GGX α = 0.5 with gold's exact
+    /// complex-IOR Fresnel (most of it the Fresnel average), against COST_KC_OLD when the
+    /// fit was integrated at construction.
     ///
     /// # Errors
     /// [`Error::OutOfDomain`] for an anisotropic NDF ([`AlbedoNdf`]).
@@ -847,7 +857,7 @@ impl<M: SampleBrdf<R, N>, R: Real, const N: usize> SampleBrdf<R, N> for KullaCon
 /// `E` as in [`KullaConty`] ([`AlbedoFit`]); `F0 = F(1)` of the wrapped Fresnel term
 /// ([`FresnelAverage::normal_reflectance`]), Turquin's stand-in for the average Fresnel
 /// ([`crate::energy::turquin_factor`]). With `F = 1`: albedo `E(μo)/E(μo) = 1` (up to the
-/// series' error: measured `|ρ − 1| ≤ 7.9e-5` on the domain of [`KullaConty`]'s test).
+/// series' error: measured `|ρ − 1| ≤ 5.7e-5` on the domain of [`KullaConty`]'s test).
 /// Against the random walk with gold: within 1e-2 for `α ≤ 0.5`, over by up to 6.1e-2 at
 /// `α = 1, μo = 1`. The lobe keeps its shape (it is the single-scattering one, brighter), so
 /// sampling is the wrapped model's, with the weight scaled.
@@ -878,7 +888,8 @@ where
     F: FresnelAverage<N>,
 {
     /// Wraps a Cook-Torrance lobe with height-correlated Smith masking (cost: one
-    /// [`AlbedoFit::new`]); `F0` from its Fresnel term.
+    /// [`AlbedoFit::new`] and `F(1)`: COST_TQ for GGX α = 0.5 with gold's exact Fresnel,
+    /// `cargo bench --bench construction`, AMD EPYC (Zen 4)); `F0` from its Fresnel term.
     ///
     /// # Errors
     /// [`Error::OutOfDomain`] for an anisotropic NDF ([`AlbedoNdf`]).
@@ -1011,8 +1022,8 @@ pub(crate) mod desc {
 
     /// [`KullaConty`] over a Cook-Torrance lobe with height-correlated Smith masking (the
     /// masking the albedo fit assumes): `ndf` (`ggx` or `beckmann`), an isotropic
-    /// `alpha ∈ [1e-4, 1]` and a `fresnel`. Building fits `E(μ)` for `alpha` (12–62 ms per
-    /// build, in `f32` and `f64` when a file is read).
+    /// `alpha ∈ [1e-4, 1]` and a `fresnel`. Building interpolates `E(μ)` for `alpha` from the
+    /// shipped table ([`AlbedoFit::new`](crate::models::AlbedoFit::new), microseconds).
     #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
     #[serde(deny_unknown_fields)]
     #[serde(expecting = "the parameters of `kulla_conty`")]
