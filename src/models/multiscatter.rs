@@ -106,9 +106,9 @@ pub const FIT_TERMS: usize = 20;
 ///
 /// **Cost of construction.** [`AlbedoFit::new`]: one interpolation (8 or 32 nodes × `K`
 /// coefficients, no allocation, no quadrature of `E`) and `E_avg` of the series (64
-/// Clenshaw sums with the shipped Gauss-Legendre rule, [`albedo_fit_rule`]): COST_NEW
+/// Clenshaw sums with the shipped Gauss-Legendre rule, [`albedo_fit_rule`]): 1.7–2.2 µs
 /// (`cargo bench --bench construction`, AMD EPYC (Zen 4), one core, release).
-/// [`AlbedoFit::integrate`]: `K` calls of [`energy::directional_albedo`], COST_INT on the
+/// [`AlbedoFit::integrate`]: `K` calls of [`energy::directional_albedo`], 10.6–52.4 ms on the
 /// same machine (GGX α = 0.5 fastest, GGX α = 3e-4 and Beckmann α = 1 slowest). 10 000
 /// materials of distinct roughness cost tens of milliseconds to build, at scene-load speed;
 /// sharing one fit between materials of the same roughness (`KullaConty::from_parts`,
@@ -136,7 +136,7 @@ pub struct AlbedoFit<R> {
 impl<S: Scalar> AlbedoFit<S> {
     /// `E(μ)` of `distribution` with slope parameter `alpha ∈ [1e-4, 1]`, from the shipped
     /// coefficient table ([`albedo_fit_table`]) by Chebyshev interpolation in the warped
-    /// roughness (see the type's docs): no quadrature, no allocation, COST_NEW. Within
+    /// roughness (see the type's docs): no quadrature, no allocation, 1.7–2.2 µs. Within
     /// 2.0e-7 of [`AlbedoFit::integrate`] (measured; the type's docs).
     ///
     /// # Errors
@@ -180,7 +180,7 @@ impl<S: Scalar> AlbedoFit<S> {
     /// generated from, for users who want the fit without the table's interpolation error
     /// (≤ 2.0e-7) and for the tests.
     ///
-    /// Cost: COST_INT (`cargo bench --bench construction`, AMD EPYC (Zen 4)); use
+    /// Cost: 10.6–52.4 ms (`cargo bench --bench construction`, AMD EPYC (Zen 4)); use
     /// [`AlbedoFit::new`] at scene load.
     ///
     /// # Errors
@@ -406,8 +406,8 @@ fn mu_of_t(alpha: f64, t: f64) -> f64 {
 /// Jacobian grows like `1/α` towards `t = 1` (normal view), where `1 − E` vanishes: the
 /// product is smooth, `E μ dμ/dt` is not. The 16-point Gauss-Legendre rule on `[0, 1]` is
 /// [`energy::gauss_legendre`]`::<16>()` as shipped in the generated table file (computing it
-/// takes 5 µs, two thirds of a construction; `tests/multiscatter.rs` checks the shipped
-/// rule against the function bit for bit).
+/// took 5.2 µs of a 7.4 µs construction; `tests/multiscatter.rs` checks the shipped rule
+/// against the function bit for bit).
 fn series_average(coeffs: &[f64; FIT_TERMS], alpha: f64) -> f64 {
     let (x, w) = (&fit_tables::GL_X, &fit_tables::GL_W);
     let mut sum = 0.0;
@@ -678,11 +678,11 @@ where
     F: FresnelAverage<N>,
 {
     /// Wraps a Cook-Torrance lobe with height-correlated Smith masking: `E(μ)` for its NDF
-    /// and `α` from the shipped table ([`AlbedoFit::new`], COST_NEW), `F_avg` from its
+    /// and `α` from the shipped table ([`AlbedoFit::new`], 1.7–2.2 µs), `F_avg` from its
     /// Fresnel term ([`FresnelAverage`]: closed forms for Schlick and F82-tint, a 64-point
     /// quadrature for the exact conductor and dielectric). Measured (`cargo bench --bench
-    /// construction`, AMD EPYC (Zen 4)): COST_KC for GGX α = 0.5 with gold's exact
-    /// complex-IOR Fresnel (most of it the Fresnel average), against COST_KC_OLD when the
+    /// construction`, AMD EPYC (Zen 4)): 8.8 µs for GGX α = 0.5 with gold's exact
+    /// complex-IOR Fresnel (most of it the Fresnel average), against 10.7 ms when the
     /// fit was integrated at construction.
     ///
     /// # Errors
@@ -888,7 +888,7 @@ where
     F: FresnelAverage<N>,
 {
     /// Wraps a Cook-Torrance lobe with height-correlated Smith masking (cost: one
-    /// [`AlbedoFit::new`] and `F(1)`: COST_TQ for GGX α = 0.5 with gold's exact Fresnel,
+    /// [`AlbedoFit::new`] and `F(1)`: 2.2 µs for GGX α = 0.5 with gold's exact Fresnel,
     /// `cargo bench --bench construction`, AMD EPYC (Zen 4)); `F0` from its Fresnel term.
     ///
     /// # Errors
