@@ -50,17 +50,25 @@ fn smooth_limit_conserves_energy_and_reflects_fresnel() {
     );
 }
 
-/// Single scattering never creates energy, and rougher loses more (to 2e-3) away from
-/// grazing. At grazing view `E` is not monotone in `α`: `Λ(wo) ≈ α tan θo / 2` masks even
-/// the smoothest facets (the conductor table's first row shows the same, `E(1e-4, μ → 0) ≈
-/// 0.9979`), so the monotonicity check starts at `μ = 0.1`.
+/// Roughness values for the monotonicity checks: the smooth end, then steps of 0.05.
+fn alpha_grid() -> Vec<f64> {
+    let mut alphas = vec![1e-4, 0.01, 0.025];
+    alphas.extend((1..=20).map(|i| f64::from(i) / 20.0));
+    alphas
+}
+
+/// Single scattering never creates energy (everywhere, grazing included), and for
+/// `μo ≥ 0.15` rougher loses more: `E(α)` does not increase along [`alpha_grid`] on either
+/// side of the interface. Below `μo ≈ 0.15` it does not fall monotonically, and that is
+/// the Smith model, not the quadrature: see
+/// [`grazing_albedo_dips_then_recovers_with_roughness`].
 #[test]
-#[ignore = "KNOWN FAILURE (open): E(α) is not monotone at μ = 0.1, η = 2.4 (E(0.2) = 0.9285 > E(0.1) = 0.9224); bound or claim to be revisited"]
 fn albedo_is_at_most_one_and_falls_with_roughness() {
+    let alphas = alpha_grid();
     for eta in ETAS {
-        for mu in [1e-6, 0.01, 0.1, 0.4, 0.7, 1.0] {
+        for mu in [1e-6, 0.01, 0.05, 0.1, 0.15, 0.2, 0.4, 0.7, 1.0] {
             let mut prev = f64::INFINITY;
-            for alpha in [1e-4, 0.01, 0.05, 0.1, 0.2, 0.4, 0.6, 0.8, 1.0] {
+            for &alpha in &alphas {
                 let e = dielectric_albedo(alpha, eta, mu).unwrap();
                 // 1.4e-6 above 1 measured at μ = 1e-6 (α 0.1, η 2.4): the rule's grazing error.
                 assert!(
@@ -68,13 +76,55 @@ fn albedo_is_at_most_one_and_falls_with_roughness() {
                     "α {alpha} η {eta} μ {mu}: E = {e}"
                 );
                 assert!(
-                    mu < 0.1 || e <= prev + 2e-3,
+                    mu < 0.15 || e <= prev,
                     "α {alpha} η {eta} μ {mu}: E = {e} > {prev}"
                 );
                 prev = e;
             }
         }
     }
+}
+
+/// At grazing view `E(α)` first falls, then recovers, then falls again — measured, and
+/// confirmed by the independent rule over `wi` and by the `F = 1` conductor.
+///
+/// Why: single scattering loses exactly the light whose scattered direction is masked,
+/// `E = ⟨G2(wo, wi)/G1(wo)⟩` over the visible normals. For a nearly smooth surface the
+/// scattered light leaves near the mirror direction, as grazing as `wo`, and the loss
+/// `Λ/(1 + 2Λ)` (with `Λ(μo) ≈ α tan θo/2` for `α tan θo ≪ 1`) grows with `α`. Once the
+/// lobe is wider than the elevation of `wo` (`α` of the order of `μo`), much of it leaves
+/// at steeper, barely masked directions, and `E` recovers; at larger `α` the usual loss of
+/// rough surfaces takes over. Fresnel only moves energy between the reflected and
+/// transmitted lobes, so the dielectric shows the dip of the conductor. Measured (this
+/// crate's rule): at `μo = 0.1`, `η = 2.4`, `E(0.1) = 0.9224 < E(0.2) = 0.9285`; for
+/// `F = 1`, `0.8835 < 0.8913`; on [`alpha_grid`] the largest rise is 2.9e-2 (`μo = 0.01`),
+/// none for `μo ≥ 0.15`.
+#[test]
+fn grazing_albedo_dips_then_recovers_with_roughness() {
+    use brdf::energy::{Distribution, directional_albedo};
+    let mu = 0.1;
+    for eta in [2.4, 1.0 / 3.0] {
+        let [e1, e2] = [0.1, 0.2].map(|alpha| {
+            let e = dielectric_albedo(alpha, eta, mu).unwrap();
+            let [r, t] = albedo_over_wi(alpha, eta, mu, 120);
+            eprintln!("α {alpha} η {eta}: |E − E_wi| = {:e}", (e - (r + t)).abs());
+            assert!(
+                (e - (r + t)).abs() < 1e-4,
+                "α {alpha} η {eta}: {e} vs the rule over wi {}",
+                r + t
+            );
+            e
+        });
+        eprintln!("μ {mu} η {eta}: E(0.1) = {e1:.6}, E(0.2) = {e2:.6}");
+        // The rise is ten times the bound on the two rules' disagreement (measured: rises
+        // 6.0e-3 and 2.9e-3, disagreements 2.3e-5 or less).
+        assert!(e2 - e1 > 1e-3, "η {eta}: E(0.1) = {e1}, E(0.2) = {e2}");
+        // And it falls first: the smooth end loses less than α = 0.1.
+        assert!(dielectric_albedo(1e-4, eta, mu).unwrap() > e1 + 5e-2);
+    }
+    // The conductor with F = 1 (a different rule and model) dips the same way.
+    let ggx = |alpha| directional_albedo(Distribution::Ggx, alpha, mu).unwrap();
+    assert!(ggx(1e-4) > ggx(0.1) + 5e-2 && ggx(0.2) > ggx(0.1) + 5e-3);
 }
 
 /// `T_avg(1/η) = T_avg(η)/η²` (derived in `dielectric_average_albedo_split`), to the
