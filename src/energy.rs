@@ -363,7 +363,11 @@ pub fn average_albedo(distribution: Distribution, alpha: f64) -> Result<f64, Err
 /// Reference: Kulla & Conty 2017 (`F_avg`).
 #[must_use]
 pub fn fresnel_average<F: FresnelTerm<f64, N>, const N: usize>(fresnel: &F) -> [f64; N] {
-    let nodes = gauss_legendre::<ORDER>();
+    // The shipped 16-point rule: `gauss_legendre::<ORDER>()` bit for bit (tested in
+    // `tests/multiscatter.rs`), without its Newton iterations (most of the cost of a call).
+    const { assert!(ORDER == 16) };
+    let (x, w) = crate::models::albedo_fit_rule();
+    let nodes = (*x, *w);
     // One evaluation per node for all channels (the same sums, bit for bit, as one
     // integral per channel: `integrate_01_k`).
     integrate_01_k(&nodes, |mu| fresnel.eval(mu).map(|f| f * mu)).map(|v| 2.0 * v)

@@ -682,9 +682,10 @@ where
     /// and `α` from the shipped table ([`AlbedoFit::new`], 1.7–2.2 µs), `F_avg` from its
     /// Fresnel term ([`FresnelAverage`]: closed forms for Schlick and F82-tint, a 64-point
     /// quadrature for the exact conductor and dielectric). Measured (`cargo bench --bench
-    /// construction`, AMD EPYC (Zen 4)): 8.8 µs for GGX α = 0.5 with gold's exact
-    /// complex-IOR Fresnel (most of it the Fresnel average), against 10.7 ms when the
-    /// fit was integrated at construction.
+    /// construction`, AMD EPYC (Zen 4), load 2.8): 4.7 µs for GGX α = 0.5 with gold's exact
+    /// complex-IOR Fresnel (9.9 µs in the same run while [`energy::fresnel_average`]
+    /// recomputed its Gauss-Legendre nodes on every call), against 10.7 ms when the fit was
+    /// integrated at construction.
     ///
     /// # Errors
     /// [`Error::OutOfDomain`] for an anisotropic NDF ([`AlbedoNdf`]).
