@@ -36,6 +36,16 @@ pub const ORDER: usize = 16;
 /// Panels per axis of the albedo quadratures (equal widths on `[0, 1]`).
 pub const PANELS: usize = 4;
 
+/// The 16-point Gauss-Legendre rule on `[0, 1]` (nodes ascending, weights) as shipped:
+/// [`gauss_legendre`]`::<16>()` computed by the generator (`tools/` `energy_tables`) and
+/// stored in the table file, bit for bit (`tests/energy_tables.rs`), so that a construction
+/// that integrates over `μ` (the series average of `models::AlbedoFit`, [`fresnel_average`])
+/// does not spend about 5 µs on Newton's method for the Legendre roots.
+#[must_use]
+pub fn gauss_legendre_16() -> (&'static [f64; 16], &'static [f64; 16]) {
+    (&tables::GL16_X, &tables::GL16_W)
+}
+
 /// Gauss-Legendre nodes and weights of order `N` on `[0, 1]`, by Newton's method on the
 /// three-term recurrence of the Legendre polynomials (Abramowitz & Stegun 25.4.29).
 ///
@@ -363,10 +373,10 @@ pub fn average_albedo(distribution: Distribution, alpha: f64) -> Result<f64, Err
 /// Reference: Kulla & Conty 2017 (`F_avg`).
 #[must_use]
 pub fn fresnel_average<F: FresnelTerm<f64, N>, const N: usize>(fresnel: &F) -> [f64; N] {
-    // The shipped 16-point rule: `gauss_legendre::<ORDER>()` bit for bit (tested in
-    // `tests/multiscatter.rs`), without its Newton iterations (most of the cost of a call).
+    // The shipped 16-point rule: `gauss_legendre::<ORDER>()` bit for bit, without its
+    // Newton iterations (most of the cost of a call).
     const { assert!(ORDER == 16) };
-    let (x, w) = crate::models::albedo_fit_rule();
+    let (x, w) = gauss_legendre_16();
     let nodes = (*x, *w);
     // One evaluation per node for all channels (the same sums, bit for bit, as one
     // integral per channel: `integrate_01_k`).

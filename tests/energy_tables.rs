@@ -10,7 +10,7 @@
 use brdf::energy::{
     ALBEDO_TABLE_ALPHA, ALBEDO_TABLE_MU, Distribution, albedo_table_node, albedo_tables,
     average_albedo, average_albedo_table, average_albedo_table_node, directional_albedo,
-    directional_albedo_table,
+    directional_albedo_table, gauss_legendre, gauss_legendre_16,
 };
 use brdf::fresnel::NoFresnel;
 use brdf::masking::SmithHeightCorrelated;
@@ -30,6 +30,31 @@ fn alpha_at(t: f64) -> f64 {
 fn mu_at(s: f64, alpha: f64) -> f64 {
     let x = s * s;
     (x * alpha / (1.0 + alpha - x)).clamp(0.0, 1.0)
+}
+
+/// The shipped 16-point rule (`energy::gauss_legendre_16`, in the table file) is
+/// `energy::gauss_legendre::<16>()`, bit for bit (so `E_avg` of a fit and `F_avg` are what
+/// they were when the rule was computed at each call).
+#[test]
+fn shipped_rule_is_the_gauss_legendre_rule() {
+    let (x, w) = gauss_legendre::<16>();
+    let (sx, sw) = gauss_legendre_16();
+    for k in 0..16 {
+        assert_eq!(
+            sx[k].to_bits(),
+            x[k].to_bits(),
+            "node {k}: {} vs {}",
+            sx[k],
+            x[k]
+        );
+        assert_eq!(
+            sw[k].to_bits(),
+            w[k].to_bits(),
+            "weight {k}: {} vs {}",
+            sw[k],
+            w[k]
+        );
+    }
 }
 
 /// Every shipped node of the rows `rows` equals the generator's value, bit for bit.

@@ -77,8 +77,7 @@ pub(crate) use layered::SUM_CONDITION;
 pub use layered::{Layered, Sum};
 pub use multiscatter::{
     AlbedoFit, AlbedoNdf, FIT_TABLE_HIGH, FIT_TABLE_LOW, FIT_TABLE_NODES, FIT_TERMS,
-    FresnelAverage, KullaConty, Turquin, albedo_fit_alpha, albedo_fit_node, albedo_fit_rule,
-    albedo_fit_table,
+    FresnelAverage, KullaConty, Turquin, albedo_fit_alpha, albedo_fit_node, albedo_fit_table,
 };
 pub use oren_nayar::{OrenNayar, OrenNayarFujii};
 pub use shirley_diffuse::ShirleyDiffuse;

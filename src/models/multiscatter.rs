@@ -107,7 +107,7 @@ pub const FIT_TERMS: usize = 20;
 ///
 /// **Cost of construction.** [`AlbedoFit::new`]: one interpolation (8 or 32 nodes × `K`
 /// coefficients, no allocation, no quadrature of `E`) and `E_avg` of the series (64
-/// Clenshaw sums with the shipped Gauss-Legendre rule, [`albedo_fit_rule`]): 1.7–2.2 µs
+/// Clenshaw sums with the shipped Gauss-Legendre rule, [`energy::gauss_legendre_16`]): 1.7–2.2 µs
 /// (`cargo bench --bench construction`, AMD EPYC (Zen 4), one core, release).
 /// [`AlbedoFit::integrate`]: `K` calls of [`energy::directional_albedo`], 10.6–52.4 ms on the
 /// same machine (GGX α = 0.5 fastest, GGX α = 3e-4 and Beckmann α = 1 slowest). 10 000
@@ -315,15 +315,6 @@ pub fn albedo_fit_node(distribution: Distribution, m: usize) -> [f32; FIT_TERMS]
     }
 }
 
-/// The 16-point Gauss-Legendre rule on `[0, 1]` (nodes, weights) with which [`AlbedoFit`]
-/// integrates `E_avg` of its series, as shipped: [`energy::gauss_legendre`]`::<16>()`
-/// computed by the generator (bit for bit, `tests/multiscatter.rs`), so that a construction
-/// does not spend 5 µs on Newton's method for the Legendre roots.
-#[must_use]
-pub fn albedo_fit_rule() -> (&'static [f64; 16], &'static [f64; 16]) {
-    (&fit_tables::GL_X, &fit_tables::GL_W)
-}
-
 /// The shipped coefficient table of one distribution: [`FIT_TABLE_NODES`] rows (roughness
 /// node `m`, `α` = [`albedo_fit_alpha`]`(m)`) of [`FIT_TERMS`] coefficients, row-major, `f32`.
 #[must_use]
@@ -406,11 +397,10 @@ fn mu_of_t(alpha: f64, t: f64) -> f64 {
 /// (`dμ/dt = 2α(1 + α)/(1 + 2α − t)²`). The loss `1 − E` is written out because the
 /// Jacobian grows like `1/α` towards `t = 1` (normal view), where `1 − E` vanishes: the
 /// product is smooth, `E μ dμ/dt` is not. The 16-point Gauss-Legendre rule on `[0, 1]` is
-/// [`energy::gauss_legendre`]`::<16>()` as shipped in the generated table file (computing it
-/// took 5.2 µs of a 7.4 µs construction; `tests/multiscatter.rs` checks the shipped rule
-/// against the function bit for bit).
+/// [`energy::gauss_legendre_16`], [`energy::gauss_legendre`]`::<16>()` as shipped (computing
+/// it took 5.2 µs of a 7.4 µs construction).
 fn series_average(coeffs: &[f64; FIT_TERMS], alpha: f64) -> f64 {
-    let (x, w) = (&fit_tables::GL_X, &fit_tables::GL_W);
+    let (x, w) = energy::gauss_legendre_16();
     let mut sum = 0.0;
     for panel in 0..4 {
         for (&xk, &wk) in x.iter().zip(w) {

@@ -10,7 +10,7 @@
 //! Row-major: row `m` (first `FIT_TABLE_LOW` nodes of `[1e-4, α_s]`, Chebyshev-Gauss in
 //! `ln α`, then `FIT_TABLE_HIGH` nodes of `[α_s, 1]`, Chebyshev-Gauss in `√α`) holds
 //! `FIT_TERMS` coefficients. `tests/multiscatter.rs` regenerates rows and fails on any
-//! difference. Then the Gauss-Legendre rule of `E_avg` (checked the same way).
+//! difference.
 
 #![allow(clippy::approx_constant, clippy::unreadable_literal)]
 
@@ -422,21 +422,4 @@ pub(super) const BECKMANN_FIT: &[f32] = &[
     -0.0002786847, 0.0052788113, 0.0027154977, -0.0007126961, -0.0016026939,
     -0.00071593944, 0.00023648911, 0.0004961414, 0.0002562132, -3.901599e-5,
     -0.00015387812, -0.00010396566, -5.39467e-6, 5.2938824e-5, 4.7198762e-5,
-];
-
-// The 16-point Gauss-Legendre rule on [0, 1] of `brdf::energy::gauss_legendre::<16>()`
-// (nodes ascending, weights), with which `AlbedoFit` integrates `E_avg`.
-#[rustfmt::skip]
-pub(super) const GL_X: [f64; 16] = [
-    0.005299532504175031, 0.0277124884633837, 0.06718439880608412, 0.1222977958224985,
-    0.19106187779867811, 0.2709916111713863, 0.35919822461037054, 0.4524937450811813,
-    0.5475062549188188, 0.6408017753896295, 0.7290083888286136, 0.8089381222013219,
-    0.8777022041775016, 0.9328156011939159, 0.9722875115366163, 0.994700467495825,
-];
-#[rustfmt::skip]
-pub(super) const GL_W: [f64; 16] = [
-    0.013576229705877029, 0.031126761969323888, 0.04757925584124645, 0.06231448562776697,
-    0.07479799440828841, 0.08457825969750128, 0.0913017075224618, 0.09472530522753424,
-    0.09472530522753424, 0.0913017075224618, 0.08457825969750128, 0.07479799440828841,
-    0.06231448562776697, 0.04757925584124645, 0.031126761969323888, 0.013576229705877029,
 ];

@@ -55,6 +55,25 @@ fn array(out: &mut String, name: &str, values: &[f32]) {
     writeln!(out, "];").unwrap();
 }
 
+/// The 16-point Gauss-Legendre rule on `[0, 1]`, shipped so that a construction (the fit's
+/// `E_avg`, `energy::fresnel_average`) does not spend microseconds on Newton's method.
+fn gauss_legendre_16(out: &mut String) {
+    let (x, w) = brdf::energy::gauss_legendre::<16>();
+    out.push_str(
+        "\n// The 16-point Gauss-Legendre rule on [0, 1] of `brdf::energy::gauss_legendre::<16>()`\n\
+         // (nodes ascending, weights): `brdf::energy::gauss_legendre_16()`.\n",
+    );
+    for (name, v) in [("GL16_X", x), ("GL16_W", w)] {
+        writeln!(out, "#[rustfmt::skip]").unwrap();
+        writeln!(out, "pub(super) const {name}: [f64; 16] = [").unwrap();
+        for chunk in v.chunks(4) {
+            let line: Vec<String> = chunk.iter().map(|v| format!("{v:?},")).collect();
+            writeln!(out, "    {}", line.join(" ")).unwrap();
+        }
+        writeln!(out, "];").unwrap();
+    }
+}
+
 fn source() -> String {
     let mut out = String::new();
     out.push_str(
@@ -69,7 +88,7 @@ fn source() -> String {
          //! `E` is row-major: row `j` (roughness node `t_j = j/(ALBEDO_TABLE_ALPHA − 1)`,\n\
          //! `α = (0.01 + 0.99 t_j)²`) holds `ALBEDO_TABLE_MU` columns `i` (view node `s_i = i/(ALBEDO_TABLE_MU − 1)`,\n\
          //! `μ = s_i² α/(1 + α − s_i²)`). `tests/energy_tables.rs` regenerates them and fails on\n\
-         //! any difference.\n\n\
+         //! any difference. Then the shipped 16-point Gauss-Legendre rule (checked the same way).\n\n\
          #![allow(clippy::approx_constant, clippy::unreadable_literal)]\n\n",
     );
     writeln!(
@@ -92,6 +111,7 @@ fn source() -> String {
         out.push('\n');
         array(&mut out, &format!("{prefix}_E_AVG"), &avg);
     }
+    gauss_legendre_16(&mut out);
     out
 }
 
@@ -163,7 +183,7 @@ fn fit_source() -> String {
          //! Row-major: row `m` (first `FIT_TABLE_LOW` nodes of `[1e-4, α_s]`, Chebyshev-Gauss in\n\
          //! `ln α`, then `FIT_TABLE_HIGH` nodes of `[α_s, 1]`, Chebyshev-Gauss in `√α`) holds\n\
          //! `FIT_TERMS` coefficients. `tests/multiscatter.rs` regenerates rows and fails on any\n\
-         //! difference. Then the Gauss-Legendre rule of `E_avg` (checked the same way).\n\n\
+         //! difference.\n\n\
          #![allow(clippy::approx_constant, clippy::unreadable_literal)]\n\n",
     );
     writeln!(
@@ -184,20 +204,6 @@ fn fit_source() -> String {
                 let line: Vec<String> = chunk.iter().map(|v| format!("{v:?},")).collect();
                 writeln!(out, "    {}", line.join(" ")).unwrap();
             }
-        }
-        writeln!(out, "];").unwrap();
-    }
-    let (x, w) = brdf::energy::gauss_legendre::<16>();
-    out.push_str(
-        "\n// The 16-point Gauss-Legendre rule on [0, 1] of `brdf::energy::gauss_legendre::<16>()`\n\
-         // (nodes ascending, weights), with which `AlbedoFit` integrates `E_avg`.\n",
-    );
-    for (name, v) in [("GL_X", x), ("GL_W", w)] {
-        writeln!(out, "#[rustfmt::skip]").unwrap();
-        writeln!(out, "pub(super) const {name}: [f64; 16] = [").unwrap();
-        for chunk in v.chunks(4) {
-            let line: Vec<String> = chunk.iter().map(|v| format!("{v:?},")).collect();
-            writeln!(out, "    {}", line.join(" ")).unwrap();
         }
         writeln!(out, "];").unwrap();
     }
