@@ -527,13 +527,12 @@ impl<R: Real> ConductorConsts<R> {
     /// bits for [`ExactSqrt`]).
     #[inline(always)]
     fn reflectance_with<P: SqrtFn>(&self, c: R, c2: R) -> R {
-        let sqrt = |x: R| P::sqrt_rsqrt(x).0;
         let nk2 = self.nk2;
         let s2 = R::one() - c2;
         let t0 = self.t0(c2);
-        let h = sqrt(t0.mul_add(t0, R::from_f64(4.0) * nk2));
+        let (h, _) = P::sqrt_rsqrt(t0.mul_add(t0, R::from_f64(4.0) * nk2));
         let m = (h + t0.abs()) * R::from_f64(0.5);
-        let g = sqrt(m);
+        let (g, _) = P::sqrt_rsqrt(m);
         let t0_pos = t0.ge(R::zero());
         let a = R::select(t0_pos, m, self.nk);
         let b = R::select(t0_pos, nk2, m * m);
@@ -985,7 +984,10 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Schlick<R, N> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
         let w = schlick_weight(cos_theta_d);
-        crate::real::channels(|i| (self.f90[i] - self.f0[i]).mul_add(w, self.f0[i]))
+        crate::real::channels(
+            #[inline(always)]
+            |i| (self.f90[i] - self.f0[i]).mul_add(w, self.f0[i]),
+        )
     }
 }
 
@@ -1239,15 +1241,18 @@ impl<R: Real, const N: usize, P: SqrtFn> FresnelTerm<R, N> for Conductor<R, N, P
     #[inline(always)]
     fn eval_cos2(&self, cos_theta_d: R, cos2_theta_d: R) -> [R; N] {
         let c = cos_theta_d.abs().min(R::one());
-        crate::real::channels(|i| {
-            let k = ConductorConsts {
-                p: self.p[i],
-                q: self.q[i],
-                nk: self.nk[i],
-                nk2: self.nk2[i],
-            };
-            k.reflectance_with::<P>(c, cos2_theta_d)
-        })
+        crate::real::channels(
+            #[inline(always)]
+            |i| {
+                let k = ConductorConsts {
+                    p: self.p[i],
+                    q: self.q[i],
+                    nk: self.nk[i],
+                    nk2: self.nk2[i],
+                };
+                k.reflectance_with::<P>(c, cos2_theta_d)
+            },
+        )
     }
 }
 
@@ -1331,7 +1336,10 @@ impl<S: Scalar, const N: usize> Splat for F82Tint<S, N> {
 impl<R: Real, const N: usize> FresnelTerm<R, N> for F82Tint<R, N> {
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
-        crate::real::channels(|i| f82_tint_with_b(self.f0[i], self.b[i], cos_theta_d))
+        crate::real::channels(
+            #[inline(always)]
+            |i| f82_tint_with_b(self.f0[i], self.b[i], cos_theta_d),
+        )
     }
 }
 

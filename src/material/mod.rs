@@ -423,7 +423,10 @@ fn sum_eval<R: Real>(terms: &[Material<R>], wi: Vec3<R>, wo: Vec3<R>) -> [R; 3] 
     };
     rest.iter().fold(first.eval(wi, wo), |acc, t| {
         let f = t.eval(wi, wo);
-        crate::real::channels(|c| acc[c] + f[c])
+        crate::real::channels(
+            #[inline(always)]
+            |c| acc[c] + f[c],
+        )
     })
 }
 

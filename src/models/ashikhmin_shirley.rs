@@ -115,10 +115,13 @@ impl<R: Real, const N: usize> Brdf<R, N> for AshikhminShirley<R, N> {
         let half = R::from_f64(0.5);
         let di = schlick_complement(wi.z * half);
         let dd = di * schlick_complement(wo.z * half);
-        let r: [R; N] = crate::real::channels(|c| {
-            let f = crate::fresnel::schlick(self.rs[c], cos_d);
-            lobe.mul_add(f, self.diffuse_k[c] * dd)
-        });
+        let r: [R; N] = crate::real::channels(
+            #[inline(always)]
+            |c| {
+                let f = crate::fresnel::schlick(self.rs[c], cos_d);
+                lobe.mul_add(f, self.diffuse_k[c] * dd)
+            },
+        );
         masked(m, r)
     }
 

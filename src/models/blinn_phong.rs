@@ -48,7 +48,10 @@ fn shininess_of<S: Scalar>(s: S) -> Result<f64, Error> {
 /// `F0 + (1 − F0)(1 − c)⁵` per channel ([`crate::fresnel::schlick`]).
 #[inline(always)]
 fn schlick_channels<R: Real, const N: usize>(f0: &[R; N], c: R) -> [R; N] {
-    crate::real::channels(|i| crate::fresnel::schlick(f0[i], c))
+    crate::real::channels(
+        #[inline(always)]
+        |i| crate::fresnel::schlick(f0[i], c),
+    )
 }
 
 /// Blinn-Phong as games wrote it before physically based shading, expressed as a BRDF.
@@ -140,7 +143,10 @@ impl<R: Real, const N: usize, S: SqrtFn> ClassicBlinnPhong<R, N, S> {
         let lobe = self.rs * wm.z.saturate().pow(self.shininess);
         {
             let f = schlick_channels(&self.f0, cos_d);
-            crate::real::channels(|c| f[c] * lobe)
+            crate::real::channels(
+                #[inline(always)]
+                |c| f[c] * lobe,
+            )
         }
     }
 
@@ -151,7 +157,10 @@ impl<R: Real, const N: usize, S: SqrtFn> ClassicBlinnPhong<R, N, S> {
     pub fn out(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let spec = self.specular_out(wi, wo);
-        let r: [R; N] = crate::real::channels(|c| self.rd[c].mul_add(wi.z, spec[c]));
+        let r: [R; N] = crate::real::channels(
+            #[inline(always)]
+            |c| self.rd[c].mul_add(wi.z, spec[c]),
+        );
         masked(m, r)
     }
 }
@@ -176,7 +185,10 @@ impl<R: Real, const N: usize, S: SqrtFn> Brdf<R, N> for ClassicBlinnPhong<R, N, 
         let (m, wi, wo) = safe_dirs(wi, wo);
         let inv_cos_i = wi.z.max(R::from_f64(DENOM_FLOOR)).recip();
         let spec = self.specular_out(wi, wo);
-        let r: [R; N] = crate::real::channels(|c| spec[c].mul_add(inv_cos_i, self.rd[c]));
+        let r: [R; N] = crate::real::channels(
+            #[inline(always)]
+            |c| spec[c].mul_add(inv_cos_i, self.rd[c]),
+        );
         masked(m, r)
     }
 
@@ -365,7 +377,16 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn>
         let cos2_m = (h.z * h.z * v * inv).saturate();
         let scale = self.rs_c * (len2 * inv);
         let f = schlick_channels(&self.f0, cos_d);
-        (cos2_m, masked(m, crate::real::channels(|c| f[c] * scale)))
+        (
+            cos2_m,
+            masked(
+                m,
+                crate::real::channels(
+                    #[inline(always)]
+                    |c| f[c] * scale,
+                ),
+            ),
+        )
     }
 }
 
@@ -392,7 +413,10 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (cos2_m, k) = self.lobe_parts(wi, wo);
         let p = P::pow(cos2_m, self.half_shininess);
-        crate::real::channels(|c| p * k[c])
+        crate::real::channels(
+            #[inline(always)]
+            |c| p * k[c],
+        )
     }
 
     #[inline]
@@ -494,7 +518,10 @@ impl<R: Real, const N: usize> Brdf<R, N> for CoupledLambert<R, N> {
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let m = upper(wi, wo);
         let t = crate::fresnel::schlick_complement(wi.z);
-        let r: [R; N] = crate::real::channels(|c| self.weight[c].mul_add(t, self.base[c]));
+        let r: [R; N] = crate::real::channels(
+            #[inline(always)]
+            |c| self.weight[c].mul_add(t, self.base[c]),
+        );
         masked(m, r)
     }
 
@@ -620,7 +647,10 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> Brdf<R, N>
         let d = self.diffuse.eval(wi, wo);
         let (cos2_m, k) = self.specular.lobe_parts(wi, wo);
         let p = P::pow(cos2_m, self.specular.half_shininess);
-        crate::real::channels(|c| p.mul_add(k[c], d[c]))
+        crate::real::channels(
+            #[inline(always)]
+            |c| p.mul_add(k[c], d[c]),
+        )
     }
 
     #[inline]
@@ -854,7 +884,10 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> SampleBrdf<R, N>
         let (_, cos_d) = half_and_cos_d::<ExactSqrt, R>(wi, wo);
         let s = self.half_shininess + self.half_shininess;
         let g = R::from_f64(8.0 * core::f64::consts::PI) * cos_d * wi.z / (s + R::one());
-        let weight = crate::real::channels(|c| k[c] * g);
+        let weight = crate::real::channels(
+            #[inline(always)]
+            |c| k[c] * g,
+        );
         Sample::new(wi, pdf, f, weight, ok & wo.z.gt(R::zero()))
     }
 

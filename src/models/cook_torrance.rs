@@ -201,7 +201,10 @@ where
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (cos_d, cos2_d, dv) = self.geometry(wi, wo);
         let f = self.fresnel.eval_cos2(cos_d, cos2_d);
-        crate::real::channels(|c| f[c] * dv)
+        crate::real::channels(
+            #[inline(always)]
+            |c| f[c] * dv,
+        )
     }
 
     #[inline]

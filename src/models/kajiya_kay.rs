@@ -173,8 +173,10 @@ impl<R: Real, const N: usize> Brdf<R, N> for KajiyaKay<R, N> {
         let so = (-co).mul_add(co, R::one()).safe_sqrt();
         let cos_phi = si.mul_add(so, -(ci * co)).clamp(R::zero(), R::one());
         let lobe = cos_phi.pow(self.p);
-        let r: [R; N] =
-            crate::real::channels(|c| self.ks_c[c].mul_add(lobe, self.kd_over_pi[c] * si));
+        let r: [R; N] = crate::real::channels(
+            #[inline(always)]
+            |c| self.ks_c[c].mul_add(lobe, self.kd_over_pi[c] * si),
+        );
         masked(m, r)
     }
 

@@ -106,7 +106,10 @@ impl<R: Real, const N: usize, A: Brdf<R, N>, B: Brdf<R, N>> Brdf<R, N> for Sum<A
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (a, b) = (self.a.eval(wi, wo), self.b.eval(wi, wo));
-        crate::real::channels(|c| a[c] + b[c])
+        crate::real::channels(
+            #[inline(always)]
+            |c| a[c] + b[c],
+        )
     }
 
     /// The union of both parts' kinks.
@@ -189,9 +192,10 @@ where
         let (m, swi, swo) = safe_dirs(wi, wo);
         let (fi, fo) = (self.fresnel.eval(swi.z), self.fresnel.eval(swo.z));
         let (d, s) = (self.base.eval(wi, wo), self.coat.eval(wi, wo));
-        let r = crate::real::channels(|c| {
-            ((R::one() - fi[c]) * (R::one() - fo[c])).mul_add(d[c], s[c])
-        });
+        let r = crate::real::channels(
+            #[inline(always)]
+            |c| ((R::one() - fi[c]) * (R::one() - fo[c])).mul_add(d[c], s[c]),
+        );
         masked(m, r)
     }
 

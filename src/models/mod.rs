@@ -272,7 +272,10 @@ pub(crate) fn upper<R: Real>(wi: Vec3<R>, wo: Vec3<R>) -> R::Mask {
 /// `v` where `m` is set, `0` elsewhere, per channel.
 #[inline(always)]
 pub(crate) fn masked<R: Real, const N: usize>(m: R::Mask, v: [R; N]) -> [R; N] {
-    crate::real::channels(|c| R::select(m, v[c], R::zero()))
+    crate::real::channels(
+        #[inline(always)]
+        |c| R::select(m, v[c], R::zero()),
+    )
 }
 
 /// `a` where `m` is set, `b` elsewhere, per component.

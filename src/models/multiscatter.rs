@@ -770,7 +770,13 @@ impl<M: Brdf<R, N>, R: Real, const N: usize> Brdf<R, N> for KullaConty<M, R, N> 
         let f = self.model.eval(wi, wo);
         let (m, swi, swo) = safe_dirs(wi, wo);
         let lobe = self.lobe(swi.z, swo.z);
-        masked(m, crate::real::channels(|c| lobe.mul_add(self.k[c], f[c])))
+        masked(
+            m,
+            crate::real::channels(
+                #[inline(always)]
+                |c| lobe.mul_add(self.k[c], f[c]),
+            ),
+        )
     }
 
     #[inline]
@@ -916,7 +922,10 @@ impl<M, R: Real, const N: usize> Turquin<M, R, N> {
     pub fn factor(&self, cos_theta_o: R) -> [R; N] {
         let e = self.albedo.eval(cos_theta_o);
         let s = (R::one() - e) / e.max(R::from_f64(1e-30));
-        crate::real::channels(|c| self.f0[c].mul_add(s, R::one()))
+        crate::real::channels(
+            #[inline(always)]
+            |c| self.f0[c].mul_add(s, R::one()),
+        )
     }
 }
 
@@ -945,7 +954,10 @@ impl<M: Brdf<R, N>, R: Real, const N: usize> Brdf<R, N> for Turquin<M, R, N> {
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let f = self.model.eval(wi, wo);
         let g = self.factor(wo.z);
-        crate::real::channels(|c| f[c] * g[c])
+        crate::real::channels(
+            #[inline(always)]
+            |c| f[c] * g[c],
+        )
     }
 
     #[inline]
@@ -977,8 +989,14 @@ impl<M: SampleBrdf<R, N>, R: Real, const N: usize> SampleBrdf<R, N> for Turquin<
         Sample::new(
             s.wi,
             s.pdf,
-            crate::real::channels(|c| s.f[c] * g[c]),
-            crate::real::channels(|c| s.weight[c] * g[c]),
+            crate::real::channels(
+                #[inline(always)]
+                |c| s.f[c] * g[c],
+            ),
+            crate::real::channels(
+                #[inline(always)]
+                |c| s.weight[c] * g[c],
+            ),
             s.valid,
         )
     }

@@ -89,7 +89,10 @@ impl<R: Real, const N: usize> Brdf<R, N> for OrenNayar<R, N> {
         // Floored: keeps t ≤ 1e20 when both directions graze (B·t stays finite, and
         // 0·t = 0 for σ = 0).
         let t = proj / wi.z.max(wo.z).max(R::from_f64(super::DENOM_FLOOR));
-        let r: [R; N] = crate::real::channels(|c| self.b[c].mul_add(t, self.a[c]));
+        let r: [R; N] = crate::real::channels(
+            #[inline(always)]
+            |c| self.b[c].mul_add(t, self.a[c]),
+        );
         masked(m, r)
     }
 
@@ -182,7 +185,10 @@ impl<R: Real, const N: usize> Brdf<R, N> for OrenNayarFujii<R, N> {
         let s = wi.x.mul_add(wo.x, wi.y * wo.y);
         let t = R::select(s.gt(R::zero()), wi.z.max(wo.z), R::one());
         let st = s / t.max(R::from_f64(super::DENOM_FLOOR));
-        let r: [R; N] = crate::real::channels(|c| self.b[c].mul_add(st, self.a[c]));
+        let r: [R; N] = crate::real::channels(
+            #[inline(always)]
+            |c| self.b[c].mul_add(st, self.a[c]),
+        );
         masked(m, r)
     }
 

@@ -88,7 +88,13 @@ impl<R: Real, const N: usize> Brdf<R, N> for ShirleyDiffuse<R, N> {
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let t = schlick_complement(wi.z) * schlick_complement(wo.z);
-        masked(m, crate::real::channels(|c| self.k[c] * t))
+        masked(
+            m,
+            crate::real::channels(
+                #[inline(always)]
+                |c| self.k[c] * t,
+            ),
+        )
     }
 
     #[inline]

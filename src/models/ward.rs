@@ -189,8 +189,10 @@ impl<R: Real, const N: usize, K: WardNormalization> Brdf<R, N> for Ward<R, N, K>
         let hz2 = (h.z * h.z).max(R::from_f64(DENOM_FLOOR));
         let e = (h.x * h.x).mul_add(self.inv_ax2, h.y * h.y * self.inv_ay2) / hz2;
         let lobe = (-e).exp() * K::prefactor_times_pi_ax_ay(h, wi.z, wo.z);
-        let r: [R; N] =
-            crate::real::channels(|c| self.rho_s_k[c].mul_add(lobe, self.rho_d_over_pi[c]));
+        let r: [R; N] = crate::real::channels(
+            #[inline(always)]
+            |c| self.rho_s_k[c].mul_add(lobe, self.rho_d_over_pi[c]),
+        );
         masked(m, r)
     }
 

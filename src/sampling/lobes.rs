@@ -250,7 +250,10 @@ pub(crate) fn finish<R: Real, const N: usize>(
 ) -> Sample<R, N> {
     // Where pdf = 0 the lane is invalid and `Sample::new` replaces the quotient by 0.
     let inv = wi.z.max(R::zero()) / pdf;
-    let weight = crate::real::channels(|c| f[c] * inv);
+    let weight = crate::real::channels(
+        #[inline(always)]
+        |c| f[c] * inv,
+    );
     Sample::new(wi, pdf, f, weight, valid)
 }
 

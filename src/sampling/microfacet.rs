@@ -729,11 +729,17 @@ where
         Some(c) => {
             let fr = m.fresnel.eval(cos_d.clamp(R::zero(), R::one()));
             let g = m.masking.g2(&m.ndf, wi, wo, wm) * c;
-            crate::real::channels(|k| fr[k] * g)
+            crate::real::channels(
+                #[inline(always)]
+                |k| fr[k] * g,
+            )
         }
         None => {
             let r = wi.z / pdf.max(tiny());
-            crate::real::channels(|k| f[k] * r)
+            crate::real::channels(
+                #[inline(always)]
+                |k| f[k] * r,
+            )
         }
     };
     let valid = wo.z.gt(R::zero()) & cos_d.gt(R::zero());

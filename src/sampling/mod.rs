@@ -162,7 +162,10 @@ pub fn sample_cosine<R: Real, const N: usize, B: Brdf<R, N> + ?Sized>(
     let wi = cosine_hemisphere(u[0], u[1]);
     let pdf = cosine_hemisphere_pdf(wi);
     let f = model.eval(wi, wo);
-    let weight = crate::real::channels(|c| f[c] * R::pi());
+    let weight = crate::real::channels(
+        #[inline(always)]
+        |c| f[c] * R::pi(),
+    );
     Sample::new(wi, pdf, f, weight, wo.z.gt(R::zero()))
 }
 

@@ -69,7 +69,8 @@ impl<B: Splat> Splat for TimesCosThetaI<B> {
 
 const USAGE: &str = "usage: peer_roughconductor --pairs FILE --values OUT --timing OUT.json \\
     --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--policy exact|newton]
-    [--mode eval|sample] [--strategy vndf|caps] [--reps N] [--warmup N]
+    [--mode eval|sample] [--strategy vndf|caps] [--isa detect|portable|avx2|avx512]
+    [--reps N] [--warmup N]
 
 Times brdf::batch::eval on Mitsuba's roughconductor workload over the pairs of FILE (written
 by benches/peers/peers.py gen), writes the values (3 channels) to OUT and the timing to
@@ -77,7 +78,8 @@ OUT.json. --policy newton takes the half vector, the final division and the cond
 square roots and divisions by brdf::fast::NewtonSqrtRecip<3, 3> (default: exact).
 --mode sample times brdf::batch::sample on the viewer directions and uniforms of FILE
 (--strategy vndf: visible normals, as Mitsuba; caps: the crate's default spherical caps)
-and writes wi (3 arrays), pdf and the weight (3 arrays). Run by benches/peers/run.sh.";
+and writes wi (3 arrays), pdf and the weight (3 arrays). --isa picks the batch kernel
+(default: brdf::batch::Isa::detect()). Run by benches/peers/run.sh.";
 
 /// The command line.
 struct Args {
@@ -91,6 +93,7 @@ struct Args {
     policy: String,
     mode: String,
     strategy: String,
+    isa: Isa,
     reps: usize,
     warmup: usize,
 }
@@ -127,6 +130,7 @@ fn args() -> Args {
             "--policy",
             "--mode",
             "--strategy",
+            "--isa",
             "--reps",
             "--warmup",
         ],
@@ -148,11 +152,23 @@ fn args() -> Args {
         policy: a.value("--policy").unwrap_or("exact").into(),
         mode: a.value("--mode").unwrap_or("eval").into(),
         strategy: a.value("--strategy").unwrap_or("vndf").into(),
+        isa: match a.value("--isa").unwrap_or("detect") {
+            "detect" => Isa::detect(),
+            "portable" => Isa::Portable,
+            "avx2" => Isa::Avx2Fma,
+            "avx512" => Isa::Avx512,
+            other => fail(format!(
+                "--isa {other:?}: expected detect, portable, avx2 or avx512"
+            )),
+        },
         reps: a.value("--reps").map_or(1000, number),
         warmup: a.value("--warmup").map_or(20, number),
     };
     if args.reps == 0 {
         fail("--reps must be positive");
+    }
+    if !args.isa.is_available() {
+        fail(format!("--isa {:?} is not available on this CPU", args.isa));
     }
     args
 }
@@ -206,7 +222,8 @@ fn time_eval<B: BatchBrdf<3>>(
 ) -> Vec<f64> {
     let run = |out: &mut [Vec<f32>; 3]| {
         let [r, g, b] = out;
-        batch::eval(black_box(m), black_box(wi), black_box(wo), [r, g, b]);
+        // Available: checked when the arguments were read.
+        let _ = batch::eval_with(a.isa, black_box(m), black_box(wi), black_box(wo), [r, g, b]);
         black_box(&*out);
     };
     for _ in 0..a.warmup {
@@ -243,7 +260,8 @@ where
             pdf,
             weight: [r, g, b],
         };
-        batch::sample(black_box(m), black_box(wo), black_box(u), &mut s);
+        // Available: checked when the arguments were read.
+        let _ = batch::sample_with(a.isa, black_box(m), black_box(wo), black_box(u), &mut s);
         black_box(&*out);
     };
     for _ in 0..a.warmup {
@@ -306,13 +324,7 @@ fn main() {
     let json = format!(
         "{{\n \"n\": {n},\n \"isa\": \"{:?}\",\n \"ndf\": \"{}\",\n \"policy\": \"{}\",\n \"mode\": \"{}\",\n \
          \"strategy\": \"{}\",\n \"reps\": {},\n \"median_s\": {median:e},\n \"best_s\": {:e}\n}}\n",
-        Isa::detect(),
-        a.ndf,
-        a.policy,
-        a.mode,
-        a.strategy,
-        a.reps,
-        times[0],
+        a.isa, a.ndf, a.policy, a.mode, a.strategy, a.reps, times[0],
     );
     fs::write(&a.timing, json).unwrap_or_else(|e| fail(format!("{}: {e}", a.timing)));
 }
