@@ -34,7 +34,7 @@
 
 use core::marker::PhantomData;
 
-use crate::real::{F32Fma, Splat};
+use crate::real::{F32Fma, F32FmaSharedDiv, Splat};
 use crate::sampling::SampleBrdf;
 use crate::{Real, Vec3, models::Brdf};
 
@@ -158,27 +158,70 @@ impl core::fmt::Display for Unavailable {
 impl core::error::Error for Unavailable {}
 
 /// What the batch entry points need of a model: its `f32` form (for the portable loop) and
-/// its [`F32Fma`] form (for the FMA loops).
+/// its [`F32Fma`] and [`F32FmaSharedDiv`] forms (for the FMA loops, see [`shares_divisions`]).
 ///
-/// Implemented for every `B: Brdf<f32, N> + Splat` whose [`F32Fma`] form is a
-/// `Brdf<F32Fma, N>` — every model of this crate, and a model of your own once it is generic
-/// over [`Real`] and implements [`Splat`] (see its example).
+/// Implemented for every `B: Brdf<f32, N> + Splat` whose [`F32Fma`] and [`F32FmaSharedDiv`]
+/// forms are models on those types — every model of this crate, and a model of your own
+/// once it is generic over [`Real`] and implements [`Splat`] (see its example).
 pub trait BatchBrdf<const N: usize>: Brdf<f32, N> {
     /// The same model on [`F32Fma`].
     type Fused: Brdf<F32Fma, N>;
+    /// The same model on [`F32FmaSharedDiv`].
+    type SharedDiv: Brdf<F32FmaSharedDiv, N>;
     /// The same model on [`F32Fma`] (its constants keep their bits).
     fn fused(&self) -> Self::Fused;
+    /// The same model on [`F32FmaSharedDiv`] (its constants keep their bits): what the FMA
+    /// kernels run where [`shares_divisions`] is `true`.
+    fn shared_div(&self) -> Self::SharedDiv;
 }
 
 impl<B, const N: usize> BatchBrdf<N> for B
 where
     B: Brdf<f32, N> + Splat,
     B::On<F32Fma>: Brdf<F32Fma, N>,
+    B::On<F32FmaSharedDiv>: Brdf<F32FmaSharedDiv, N>,
 {
     type Fused = B::On<F32Fma>;
+    type SharedDiv = B::On<F32FmaSharedDiv>;
     #[inline]
     fn fused(&self) -> Self::Fused {
         self.splat()
+    }
+    #[inline]
+    fn shared_div(&self) -> Self::SharedDiv {
+        self.splat()
+    }
+}
+
+/// Whether the FMA kernels ([`Isa::Avx2Fma`], [`Isa::Avx512`]) of [`eval_with`], [`eval`] and
+/// [`eval_glam`] run a model's [`F32FmaSharedDiv`] form ([`BatchBrdf::shared_div`]) rather
+/// than its [`F32Fma`] form: `true` on Intel CPUs (the `cpuid` vendor string
+/// `GenuineIntel`), `false` elsewhere and without `std` or off x86-64. Decided once per
+/// process.
+///
+/// Why by vendor: the two forms differ where a formula divides once per channel (the exact
+/// conductor), and which is faster depends on the core's divider. Measured on the rough gold
+/// conductor workload (`benches/peers/run.sh`, AVX-512): the shared division is 1.12× faster
+/// on an Intel Xeon (Sapphire Rapids class, divider-bound: three square roots and one
+/// division cost more than the multiplications that replace two divisions) and 0.93–0.96×
+/// on an AMD EPYC Zen 4, whose divider is not the bound. Results differ between the two
+/// forms by a few ULP (`tests/fresnel.rs`); each kernel equals `eval` on its own form bit
+/// for bit. The pipelined passes and the batch samplers run the [`F32Fma`] form everywhere.
+#[must_use]
+pub fn shares_divisions() -> bool {
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    {
+        use std::sync::OnceLock;
+        static INTEL: OnceLock<bool> = OnceLock::new();
+        *INTEL.get_or_init(|| {
+            let id = core::arch::x86_64::__cpuid(0);
+            let vendor = [id.ebx, id.edx, id.ecx].map(u32::to_le_bytes).concat();
+            vendor == *b"GenuineIntel"
+        })
+    }
+    #[cfg(not(all(feature = "std", target_arch = "x86_64")))]
+    {
+        false
     }
 }
 
@@ -299,6 +342,27 @@ fn dispatch<P: Loop<N>, F: Loop<N>, const N: usize>(
     Ok(())
 }
 
+/// [`dispatch`] of the per-pair loop: the FMA kernels on `shared` (the [`F32FmaSharedDiv`]
+/// form) where [`shares_divisions`], else on `fused` (the [`F32Fma`] form).
+#[inline]
+fn dispatch_per_pair<B: BatchBrdf<N>, const N: usize>(
+    isa: Isa,
+    brdf: &B,
+    (fused, shared): (&B::Fused, &B::SharedDiv),
+    wi: Directions<'_>,
+    wo: Directions<'_>,
+    out: [&mut [f32]; N],
+) -> Result<(), Unavailable> {
+    let portable = PerPair::<f32, B>(brdf, PhantomData);
+    if shares_divisions() {
+        let shared = PerPair::<F32FmaSharedDiv, B::SharedDiv>(shared, PhantomData);
+        dispatch(isa, &portable, &shared, wi, wo, out)
+    } else {
+        let fused = PerPair::<F32Fma, B::Fused>(fused, PhantomData);
+        dispatch(isa, &portable, &fused, wi, wo, out)
+    }
+}
+
 /// Evaluates `brdf` for every pair `(wi[i], wo[i])` with a chosen instruction set, writing
 /// channel `c` of `f(wi[i], wo[i])` (sr⁻¹, without `cos θi`) to `out[c][i]`.
 ///
@@ -317,15 +381,8 @@ pub fn eval_with<B: BatchBrdf<N>, const N: usize>(
     wo: Directions<'_>,
     out: [&mut [f32]; N],
 ) -> Result<(), Unavailable> {
-    let fused = brdf.fused();
-    dispatch(
-        isa,
-        &PerPair::<f32, B>(brdf, PhantomData),
-        &PerPair::<F32Fma, B::Fused>(&fused, PhantomData),
-        wi,
-        wo,
-        out,
-    )
+    let forms = (&brdf.fused(), &brdf.shared_div());
+    dispatch_per_pair(isa, brdf, forms, wi, wo, out)
 }
 
 /// Evaluates `brdf` for every pair `(wi[i], wo[i])` on the widest instruction set this CPU
@@ -505,12 +562,8 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
         "eval_glam: lengths differ"
     );
     let isa = Isa::detect();
-    // The F32Fma form once per call, not per chunk.
-    let fused = brdf.fused();
-    let (portable, fused) = (
-        PerPair::<f32, B>(brdf, PhantomData),
-        PerPair::<F32Fma, B::Fused>(&fused, PhantomData),
-    );
+    // The kernels' forms once per call, not per chunk.
+    let (fused, shared) = (brdf.fused(), brdf.shared_div());
     let mut soa = [[0.0f32; CHUNK]; 6];
     let mut res = [[0.0f32; CHUNK]; N];
     for ((wi, wo), out) in wi
@@ -532,7 +585,7 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
         let dirs_o = Directions::new(&ox[..n], &oy[..n], &oz[..n]);
         let slices = res.each_mut().map(|c| &mut c[..n]);
         // The detected variant is available by construction.
-        let _ = dispatch(isa, &portable, &fused, dirs_i, dirs_o, slices);
+        let _ = dispatch_per_pair(isa, brdf, (&fused, &shared), dirs_i, dirs_o, slices);
         for (i, o) in out.iter_mut().enumerate() {
             *o = core::array::from_fn(|c| res[c][i]);
         }

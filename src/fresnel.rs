@@ -527,6 +527,23 @@ impl<R: Real> ConductorConsts<R> {
     /// bits for [`ExactSqrt`]).
     #[inline(always)]
     fn reflectance_with<P: SqrtFn>(&self, c: R, c2: R) -> R {
+        let f = self.fraction_with::<P>(c, c2);
+        let num = f.num_s * f.sum_p;
+        let den = R::from_f64(2.0) * f.den_s * f.den_p;
+        let critical =
+            f.m.lt(R::from_f64(if core::mem::size_of::<R::Scalar>() == 4 {
+                1e-9
+            } else {
+                1e-60
+            }));
+        let r = R::select(critical, R::one(), P::div(num, den));
+        R::select(self.matched(), R::zero(), r)
+    }
+
+    /// The factors of [`Self::reflectance`]'s fraction `num_s (den_p + num_p) / (2 den_s
+    /// den_p)`, with `P`'s two square roots.
+    #[inline(always)]
+    fn fraction_with<P: SqrtFn>(&self, c: R, c2: R) -> Fraction<R> {
         let nk2 = self.nk2;
         let s2 = R::one() - c2;
         let t0 = self.t0(c2);
@@ -545,15 +562,82 @@ impl<R: Real> ConductorConsts<R> {
         let (pm, pp) = (c.mul_add(a, -s2g), c.mul_add(a, s2g));
         let num_p = pm.mul_add(pm, cb);
         let den_p = pp.mul_add(pp, cb);
-        let den = R::from_f64(2.0) * den_s * den_p;
-        let critical = m.lt(R::from_f64(if core::mem::size_of::<R::Scalar>() == 4 {
-            1e-9
-        } else {
-            1e-60
-        }));
-        let r = R::select(critical, R::one(), P::div(num_s * (den_p + num_p), den));
-        R::select(self.matched(), R::zero(), r)
+        Fraction {
+            num_s,
+            den_s,
+            sum_p: den_p + num_p,
+            den_p,
+            m,
+        }
     }
+}
+
+/// The factors of the conductor's fraction `R = num_s·sum_p / (2·den_s·den_p)` and `m` (the
+/// larger of `a²`, `b²`; `< M` only at a dielectric's critical angle).
+#[derive(Clone, Copy)]
+struct Fraction<R> {
+    num_s: R,
+    den_s: R,
+    /// `den_p + num_p`.
+    sum_p: R,
+    den_p: R,
+    m: R,
+}
+
+/// Smallest `k` of every channel of a [`Conductor`] with [`SharedDivision`]. With
+/// `k ≥ 0.1` (and `η² + k² ≤ `[`shared_division_max_norm`]) every denominator `2 den_s den_p`
+/// of [`conductor`]'s fraction lies in `[2⁻¹⁹, 2.5 (η² + k² + 1)⁴]` (measured over the
+/// domain in `tests/fresnel.rs`; `m ≥ ηk ≥ 10⁻⁵`, so no critical angle and no index match),
+/// and the product of the channels' denominators stays a normal `f32`. Below it the range
+/// reaches `2⁻⁸⁰` (at `k = 0`).
+pub const SHARED_DIVISION_MIN_K: f64 = 0.1;
+
+/// The largest `η² + k²` of a channel of an `N`-channel [`Conductor`] with
+/// [`SharedDivision`]: the `M = η² + k² + 1` for which `(2.5 M⁴)ᴺ = 2¹¹²`, so the product of
+/// the `N` denominators (and every partial product) stays below `2¹¹²`, a factor `2¹⁶` from
+/// the `f32` overflow. For `N = 3` it is 512 (`|η̃| ≤ 22.6`: every metal's visible-range
+/// IOR); `N = 2`, 1.3·10⁴; `N = 4`, 101.
+#[must_use]
+pub fn shared_division_max_norm(n: usize) -> f64 {
+    let n = n as f64;
+    ((112.0 - n * 2.5f64.log2()) / (4.0 * n)).exp2() - 1.0
+}
+
+/// How a [`Conductor`] arranges its per-channel divisions: [`PerChannel`] (the default) or
+/// [`SharedDivision`]. Sealed.
+pub trait DivisionPlan:
+    Copy + core::fmt::Debug + Default + Send + Sync + 'static + sealed::DivisionPlan
+{
+    /// Whether the channels share one division on a number type that asks for it
+    /// ([`crate::real::Bits::SHARE_DIVISIONS`]).
+    const SHARED: bool;
+}
+
+/// [`DivisionPlan`]: one division per channel on every number type.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PerChannel;
+
+/// [`DivisionPlan`]: on [`crate::real::F32FmaSharedDiv`] — the batch kernels' number type on
+/// cores whose divider bounds them ([`crate::batch::shares_divisions`]) — all channels share
+/// one division; on every other type, one division per channel. Chosen with
+/// [`Conductor::share_divisions`], which requires `k ≥ `[`SHARED_DIVISION_MIN_K`] in every
+/// channel (the metals: gold, silver, copper, aluminium, iron … have `k > 1` in the visible).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SharedDivision;
+
+impl DivisionPlan for PerChannel {
+    const SHARED: bool = false;
+}
+
+impl DivisionPlan for SharedDivision {
+    const SHARED: bool = true;
+}
+
+mod sealed {
+    /// The two division plans of [`super::Conductor`].
+    pub trait DivisionPlan {}
+    impl DivisionPlan for super::PerChannel {}
+    impl DivisionPlan for super::SharedDivision {}
 }
 
 /// Complex s and p amplitude reflection coefficients of a conductor (or, with `k = 0`, of a
@@ -883,6 +967,11 @@ const ETA_DOMAIN: &str = "[1e-4, 1e4]";
 const K_DOMAIN: &str = "[0, 1e4]";
 const F0_IOR_DOMAIN: &str = "[0, 0.9996]";
 
+/// The `k` domain of [`Conductor::share_divisions`], as error messages print it.
+const SHARED_K_DOMAIN: &str = "[0.1, 1e4] (SharedDivision needs a metal)";
+/// The `η² + k²` domain of [`Conductor::share_divisions`].
+const SHARED_NORM_DOMAIN: &str = "[0, shared_division_max_norm(N)] (512 for 3 channels)";
+
 /// `eta ∈ [MIN_ETA, MAX_ETA]`, compared in the precision of `S`.
 #[inline]
 pub(crate) fn check_eta<S: Scalar>(eta: S) -> Result<S, Error> {
@@ -1120,7 +1209,7 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for Dielectric<R, N> {
 /// two square roots and one division per channel; [`crate::fast::NewtonSqrtRecip`] replaces
 /// them by estimates refined with Newton steps (error in `docs/tradeoffs.md`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Conductor<R, const N: usize, P = ExactSqrt> {
+pub struct Conductor<R, const N: usize, P = ExactSqrt, D = PerChannel> {
     eta: [R; N],
     k: [R; N],
     /// Per channel the constants `p`, `q`, `|ηk|` and `η²k²` of `ConductorConsts`.
@@ -1128,7 +1217,7 @@ pub struct Conductor<R, const N: usize, P = ExactSqrt> {
     q: [R; N],
     nk: [R; N],
     nk2: [R; N],
-    _p: PhantomData<P>,
+    _p: PhantomData<(P, D)>,
 }
 
 impl<S: Scalar, const N: usize> Conductor<S, N> {
@@ -1176,7 +1265,7 @@ impl<S: Scalar, const N: usize> Conductor<S, N> {
     }
 }
 
-impl<R: Real, const N: usize, P: SqrtFn> Conductor<R, N, P> {
+impl<R: Real, const N: usize, P: SqrtFn, D: DivisionPlan> Conductor<R, N, P, D> {
     /// The same conductor with its square roots and divisions taken by `P2` (for example
     /// [`crate::fast::NewtonSqrtRecip`]`<3, 3>`, relative error in `docs/tradeoffs.md`).
     ///
@@ -1192,7 +1281,7 @@ impl<R: Real, const N: usize, P: SqrtFn> Conductor<R, N, P> {
     /// ```
     #[inline]
     #[must_use]
-    pub fn with_policy<P2: SqrtFn>(self) -> Conductor<R, N, P2> {
+    pub fn with_policy<P2: SqrtFn>(self) -> Conductor<R, N, P2, D> {
         Conductor {
             eta: self.eta,
             k: self.k,
@@ -1201,6 +1290,60 @@ impl<R: Real, const N: usize, P: SqrtFn> Conductor<R, N, P> {
             nk: self.nk,
             nk2: self.nk2,
             _p: PhantomData,
+        }
+    }
+
+    /// The same conductor with [`SharedDivision`]: on the batch kernels' number type of
+    /// divider-bound cores ([`crate::real::F32FmaSharedDiv`]) its channels share one division
+    /// (within 8 ULP of the per-channel form; measured 1.12× faster on an Intel Xeon, see
+    /// [`crate::batch::shares_divisions`]); elsewhere it is the per-channel conductor bit for
+    /// bit.
+    ///
+    /// # Errors
+    ///
+    /// [`Error`] naming `k` if a channel has `k < `[`SHARED_DIVISION_MIN_K`] (a dielectric
+    /// or nearly so), or `eta² + k²` if it exceeds [`shared_division_max_norm`]`(N)`: the
+    /// product of the denominators could leave the `f32` range. More than 4 channels do not
+    /// compile.
+    ///
+    /// ```
+    /// use brdf::fresnel::{Conductor, FresnelTerm};
+    /// use brdf::ior::Preset;
+    /// let gold = Conductor::<f32, 3>::from_preset(Preset::Gold)?.share_divisions()?;
+    /// assert!(gold.eval(1.0)[0] > 0.9);
+    /// assert!(Conductor::<f32, 1>::new([1.5], [0.0])?.share_divisions().is_err());
+    /// # Ok::<(), brdf::Error>(())
+    /// ```
+    pub fn share_divisions(self) -> Result<Conductor<R, N, P, SharedDivision>, Error>
+    where
+        R: crate::Scalar,
+    {
+        const { assert!(N <= 4, "SharedDivision: at most 4 channels") };
+        let max_norm = shared_division_max_norm(N);
+        for (eta, k) in self.eta.into_iter().zip(self.k) {
+            error::in_range("k", k, SHARED_DIVISION_MIN_K, MAX_K, SHARED_K_DOMAIN)?;
+            let norm = eta * eta + k * k;
+            error::in_range("eta² + k²", norm, 0.0, max_norm, SHARED_NORM_DOMAIN)?;
+        }
+        Ok(Conductor {
+            eta: self.eta,
+            k: self.k,
+            p: self.p,
+            q: self.q,
+            nk: self.nk,
+            nk2: self.nk2,
+            _p: PhantomData,
+        })
+    }
+
+    /// The constants of channel `i`.
+    #[inline(always)]
+    fn consts(&self, i: usize) -> ConductorConsts<R> {
+        ConductorConsts {
+            p: self.p[i],
+            q: self.q[i],
+            nk: self.nk[i],
+            nk2: self.nk2[i],
         }
     }
 
@@ -1215,10 +1358,10 @@ impl<R: Real, const N: usize, P: SqrtFn> Conductor<R, N, P> {
     }
 }
 
-impl<S: Scalar, const N: usize, P: SqrtFn> Splat for Conductor<S, N, P> {
-    type On<L: Real> = Conductor<L, N, P>;
+impl<S: Scalar, const N: usize, P: SqrtFn, D: DivisionPlan> Splat for Conductor<S, N, P, D> {
+    type On<L: Real> = Conductor<L, N, P, D>;
     #[inline]
-    fn splat<L: Real>(&self) -> Conductor<L, N, P> {
+    fn splat<L: Real>(&self) -> Conductor<L, N, P, D> {
         Conductor {
             eta: splat_array(&self.eta),
             k: splat_array(&self.k),
@@ -1231,27 +1374,56 @@ impl<S: Scalar, const N: usize, P: SqrtFn> Splat for Conductor<S, N, P> {
     }
 }
 
-impl<R: Real, const N: usize, P: SqrtFn> FresnelTerm<R, N> for Conductor<R, N, P> {
+impl<R: Real, const N: usize, P: SqrtFn, D: DivisionPlan> FresnelTerm<R, N>
+    for Conductor<R, N, P, D>
+{
     #[inline(always)]
     fn eval(&self, cos_theta_d: R) -> [R; N] {
         let c = cos_theta_d.abs().min(R::one());
         self.eval_cos2(c, c * c)
     }
 
+    /// Per channel [`conductor`]'s two square roots and one division; with [`SharedDivision`]
+    /// on a number type with [`crate::real::Bits::SHARE_DIVISIONS`], one division for all
+    /// channels instead (`n_i = num_s sum_p`, `d_i = 2 den_s den_p` of channel `i`):
+    ///
+    /// ```text
+    /// R_i = n_i / d_i = n_i · Π_{j≠i} d_j · (Π_j d_j)⁻¹
+    /// ```
+    ///
+    /// (`N − 1` prefix products, one division, `2N` multiplications and a clamp to 1; a few
+    /// more roundings: within 8 ULP of the per-channel form, `tests/fresnel.rs`).
     #[inline(always)]
     fn eval_cos2(&self, cos_theta_d: R, cos2_theta_d: R) -> [R; N] {
         let c = cos_theta_d.abs().min(R::one());
+        if R::SHARE_DIVISIONS && D::SHARED && N >= 2 {
+            // Numerators and denominators, then prefix products of the denominators.
+            let mut num = [R::zero(); N];
+            let mut den = [R::zero(); N];
+            for i in 0..N {
+                let f = self.consts(i).fraction_with::<P>(c, cos2_theta_d);
+                num[i] = f.num_s * f.sum_p;
+                den[i] = R::from_f64(2.0) * f.den_s * f.den_p;
+            }
+            let mut before = [R::one(); N];
+            for i in 1..N {
+                before[i] = before[i - 1] * den[i - 1];
+            }
+            let r = P::div(R::one(), before[N - 1] * den[N - 1]);
+            // R_i = n_i · (Π_{j<i} d_j · Π_{j>i} d_j) · r, the suffix product built backwards.
+            let mut out = [R::zero(); N];
+            let mut after = R::one();
+            for i in (0..N).rev() {
+                // (`min`: at grazing n_i = d_i, and the rounding of the products could
+                // give 1 + 1 ULP.)
+                out[i] = (num[i] * (before[i] * after) * r).min(R::one());
+                after *= den[i];
+            }
+            return out;
+        }
         crate::real::channels(
             #[inline(always)]
-            |i| {
-                let k = ConductorConsts {
-                    p: self.p[i],
-                    q: self.q[i],
-                    nk: self.nk[i],
-                    nk2: self.nk2[i],
-                };
-                k.reflectance_with::<P>(c, cos2_theta_d)
-            },
+            |i| self.consts(i).reflectance_with::<P>(c, cos2_theta_d),
         )
     }
 }

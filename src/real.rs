@@ -270,6 +270,12 @@ pub trait Bits: Sized + sealed::Sealed {
     /// trick here. Outside the domain (`0`, subnormals, negatives, `∞`, NaN) the value is
     /// unspecified.
     fn rsqrt_estimate(self) -> Self;
+
+    /// Whether formulas that divide once per channel should share one division (computing
+    /// the reciprocal of the product of the denominators, and each quotient from it with a
+    /// few multiplications). `true` only for [`F32FmaSharedDiv`], the batch kernels' number
+    /// type on cores whose divider is their bottleneck; a formula reads it at compile time.
+    const SHARE_DIVISIONS: bool = false;
 }
 
 mod sealed {
@@ -279,6 +285,7 @@ mod sealed {
     impl Sealed for f32 {}
     impl Sealed for f64 {}
     impl Sealed for super::F32Fma {}
+    impl Sealed for super::F32FmaSharedDiv {}
     impl Sealed for super::f32x4 {}
     impl Sealed for super::f32x8 {}
     impl Sealed for super::f32x16 {}
@@ -733,55 +740,118 @@ impl_lanes!(f64x4 {
 #[repr(transparent)]
 pub struct F32Fma(pub f32);
 
-macro_rules! f32fma_ops {
-    ($($tr:ident $m:ident $atr:ident $am:ident $op:tt),*) => {
+/// `Real` and `Bits` of a one-lane `f32` wrapper whose `mul_add` always fuses:
+/// `fused_f32!(F32Fma, share_divisions: false)`. [`F32Fma`] and [`F32FmaSharedDiv`] are the
+/// same number (every operation the `f32` one, `mul_add` the correctly rounded `fma`); they
+/// differ only in [`Bits::SHARE_DIVISIONS`], which selects a formula's arrangement.
+macro_rules! fused_f32 {
+    ($t:ident, share_divisions: $share:expr) => {
+        fused_f32!(@ops $t;
+            Add add AddAssign add_assign +,
+            Sub sub SubAssign sub_assign -,
+            Mul mul MulAssign mul_assign *,
+            Div div DivAssign div_assign /
+        );
+
+        impl Neg for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn neg(self) -> $t {
+                $t(-self.0)
+            }
+        }
+
+        impl Real for $t {
+            type Scalar = f32;
+            type Mask = bool;
+            const LANES: usize = 1;
+
+            #[inline(always)]
+            fn splat(x: f32) -> Self {
+                $t(x)
+            }
+            #[inline(always)]
+            fn from_f64(x: f64) -> Self {
+                $t(x as f32)
+            }
+            #[inline(always)]
+            fn lane(self, i: usize) -> f32 {
+                assert!(i == 0, "lane index out of range");
+                self.0
+            }
+            #[inline(always)]
+            fn from_fn(mut f: impl FnMut(usize) -> f32) -> Self {
+                $t(f(0))
+            }
+            fused_f32!(@via_f32 $t; sqrt, abs, exp, exp2, ln, log2, sin, cos, floor);
+            #[inline(always)]
+            fn min(self, other: Self) -> Self {
+                $t(<f32 as Real>::min(self.0, other.0))
+            }
+            #[inline(always)]
+            fn max(self, other: Self) -> Self {
+                $t(<f32 as Real>::max(self.0, other.0))
+            }
+            /// `fma(self, a, b)`, one rounding, on every build (see [`F32Fma`]).
+            #[inline(always)]
+            fn mul_add(self, a: Self, b: Self) -> Self {
+                $t(f32m::fma(self.0, a.0, b.0))
+            }
+            #[inline(always)]
+            fn pow(self, y: Self) -> Self {
+                $t(<f32 as Real>::pow(self.0, y.0))
+            }
+            fused_f32!(@cmp_via_f32; lt, le, gt, ge, eq);
+            #[inline(always)]
+            fn is_finite(self) -> bool {
+                self.0.is_finite()
+            }
+            bool_mask!();
+        }
+
+        impl Bits for $t {
+            const SHARE_DIVISIONS: bool = $share;
+            #[inline(always)]
+            fn exponent_split(self) -> (Self, Self) {
+                let (m, e) = <f32 as Bits>::exponent_split(self.0);
+                ($t(m), $t(e))
+            }
+            #[inline(always)]
+            fn ldexp(self, e: Self) -> Self {
+                $t(<f32 as Bits>::ldexp(self.0, e.0))
+            }
+            #[inline(always)]
+            fn rsqrt_estimate(self) -> Self {
+                $t(<f32 as Bits>::rsqrt_estimate(self.0))
+            }
+        }
+    };
+    (@ops $t:ident; $($tr:ident $m:ident $atr:ident $am:ident $op:tt),*) => {
         $(
-            impl $tr for F32Fma {
-                type Output = F32Fma;
+            impl $tr for $t {
+                type Output = $t;
                 #[inline(always)]
-                fn $m(self, o: F32Fma) -> F32Fma {
-                    F32Fma(self.0 $op o.0)
+                fn $m(self, o: $t) -> $t {
+                    $t(self.0 $op o.0)
                 }
             }
-            impl $atr for F32Fma {
+            impl $atr for $t {
                 #[inline(always)]
-                fn $am(&mut self, o: F32Fma) {
+                fn $am(&mut self, o: $t) {
                     self.0 = self.0 $op o.0;
                 }
             }
         )*
     };
-}
-f32fma_ops!(
-    Add add AddAssign add_assign +,
-    Sub sub SubAssign sub_assign -,
-    Mul mul MulAssign mul_assign *,
-    Div div DivAssign div_assign /
-);
-
-impl Neg for F32Fma {
-    type Output = F32Fma;
-    #[inline(always)]
-    fn neg(self) -> F32Fma {
-        F32Fma(-self.0)
-    }
-}
-
-/// Forwards a `Real` method of `F32Fma` to the `f32` one.
-macro_rules! via_f32 {
-    ($($m:ident),*) => {
+    (@via_f32 $t:ident; $($m:ident),*) => {
         $(
             #[inline(always)]
             fn $m(self) -> Self {
-                F32Fma(<f32 as Real>::$m(self.0))
+                $t(<f32 as Real>::$m(self.0))
             }
         )*
     };
-}
-
-/// Forwards a comparison of `F32Fma` to the `f32` one.
-macro_rules! cmp_via_f32 {
-    ($($m:ident),*) => {
+    (@cmp_via_f32; $($m:ident),*) => {
         $(
             #[inline(always)]
             fn $m(self, other: Self) -> bool {
@@ -791,69 +861,27 @@ macro_rules! cmp_via_f32 {
     };
 }
 
-impl Real for F32Fma {
-    type Scalar = f32;
-    type Mask = bool;
-    const LANES: usize = 1;
+fused_f32!(F32Fma, share_divisions: false);
 
-    #[inline(always)]
-    fn splat(x: f32) -> Self {
-        F32Fma(x)
-    }
-    #[inline(always)]
-    fn from_f64(x: f64) -> Self {
-        F32Fma(x as f32)
-    }
-    #[inline(always)]
-    fn lane(self, i: usize) -> f32 {
-        assert!(i == 0, "lane index out of range");
-        self.0
-    }
-    #[inline(always)]
-    fn from_fn(mut f: impl FnMut(usize) -> f32) -> Self {
-        F32Fma(f(0))
-    }
-    via_f32!(sqrt, abs, exp, exp2, ln, log2, sin, cos, floor);
-    #[inline(always)]
-    fn min(self, other: Self) -> Self {
-        F32Fma(<f32 as Real>::min(self.0, other.0))
-    }
-    #[inline(always)]
-    fn max(self, other: Self) -> Self {
-        F32Fma(<f32 as Real>::max(self.0, other.0))
-    }
-    /// `fma(self, a, b)`, one rounding, on every build (see the [type docs](F32Fma)).
-    #[inline(always)]
-    fn mul_add(self, a: Self, b: Self) -> Self {
-        F32Fma(f32m::fma(self.0, a.0, b.0))
-    }
-    #[inline(always)]
-    fn pow(self, y: Self) -> Self {
-        F32Fma(<f32 as Real>::pow(self.0, y.0))
-    }
-    cmp_via_f32!(lt, le, gt, ge, eq);
-    #[inline(always)]
-    fn is_finite(self) -> bool {
-        self.0.is_finite()
-    }
-    bool_mask!();
-}
+/// [`F32Fma`] for cores whose divider bounds the batch kernels: the same number, bit for bit
+/// in every operation, but formulas that divide once per channel share one division instead
+/// ([`Bits::SHARE_DIVISIONS`]; today the exact conductor Fresnel term,
+/// [`crate::fresnel::Conductor`], for metals with `k ≥ 0.1` in every channel).
+///
+/// The [`crate::batch`] FMA kernels run a model on this type instead of [`F32Fma`] where
+/// [`crate::batch::shares_divisions`] says so (Intel CPUs): `eval` on
+/// `model.splat::<F32FmaSharedDiv>()` reproduces them bit for bit there, as `eval` on the
+/// [`F32Fma`] form does elsewhere. The two forms differ by a few ULP (bounded in
+/// `tests/fresnel.rs`).
+///
+/// Why a type: the choice is made where the batch path dispatches, at run time, without
+/// changing the model's type; the formula reads the flag of its number type at compile
+/// time, so each kernel has one arrangement and no branch.
+#[derive(Clone, Copy, Debug, Default, PartialEq, PartialOrd)]
+#[repr(transparent)]
+pub struct F32FmaSharedDiv(pub f32);
 
-impl Bits for F32Fma {
-    #[inline(always)]
-    fn exponent_split(self) -> (Self, Self) {
-        let (m, e) = <f32 as Bits>::exponent_split(self.0);
-        (F32Fma(m), F32Fma(e))
-    }
-    #[inline(always)]
-    fn ldexp(self, e: Self) -> Self {
-        F32Fma(<f32 as Bits>::ldexp(self.0, e.0))
-    }
-    #[inline(always)]
-    fn rsqrt_estimate(self) -> Self {
-        F32Fma(<f32 as Bits>::rsqrt_estimate(self.0))
-    }
-}
+fused_f32!(F32FmaSharedDiv, share_divisions: true);
 
 // ---------------------------------------------------------------------------------------------
 // Splat: a material on another number type

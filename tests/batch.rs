@@ -13,7 +13,7 @@ use brdf::models::{
 };
 use brdf::ndf::{Ggx, GgxIsotropic};
 use brdf::normalization::Normalization;
-use brdf::real::F32Fma;
+use brdf::real::{F32Fma, F32FmaSharedDiv};
 use brdf::{Brdf, Vec3, ior};
 
 /// `n` direction pairs by warping a deterministic low-discrepancy sequence over the
@@ -68,6 +68,31 @@ fn check_entry<B: BatchBrdf<N>, const N: usize>(
     let fused_ref: Vec<[f32; N]> = (0..n)
         .map(|i| fused.eval(fma(at(i).0), fma(at(i).1)).map(|v| v.0))
         .collect();
+    // The FMA kernels' own form: F32FmaSharedDiv where the batch path shares divisions.
+    let shared = brdf.shared_div();
+    let sdv = |w: Vec3<f32>| {
+        Vec3::new(
+            F32FmaSharedDiv(w.x),
+            F32FmaSharedDiv(w.y),
+            F32FmaSharedDiv(w.z),
+        )
+    };
+    let shared_ref: Vec<[f32; N]> = (0..n)
+        .map(|i| shared.eval(sdv(at(i).0), sdv(at(i).1)).map(|v| v.0))
+        .collect();
+    let kernel_ref = if batch::shares_divisions() {
+        &shared_ref
+    } else {
+        &fused_ref
+    };
+    // The two FMA forms agree within the same bound as the fused and f32 forms.
+    for (p, q) in shared_ref.iter().zip(&fused_ref) {
+        for c in 0..N {
+            let (a, b) = (f64::from(p[c]), f64::from(q[c]));
+            let e = (a - b).abs() / b.abs().max(f64::MIN_POSITIVE);
+            assert!(e <= rel.max(1e-6), "shared vs fused: {e:e}");
+        }
+    }
     // The fused form against the f32 one.
     let peak = plain
         .iter()
@@ -100,7 +125,7 @@ fn check_entry<B: BatchBrdf<N>, const N: usize>(
         let reference = if isa == Isa::Portable {
             &plain
         } else {
-            &fused_ref
+            kernel_ref
         };
         for i in 0..n {
             for c in 0..N {
@@ -158,6 +183,23 @@ fn every_available_variant_matches_scalar_rough_conductor_rgb() {
     );
     let sum = Sum::new(ct, Lambert::<f32, 3>::new([0.1, 0.2, 0.3]).unwrap());
     check(&sum, 517, 1e-6);
+}
+
+/// A conductor whose channels share one division on divider-bound cores: the FMA kernels
+/// equal `eval` on the form they run (`F32FmaSharedDiv` on Intel), and both forms agree.
+#[test]
+fn every_available_variant_matches_scalar_shared_division_conductor() {
+    let ct = CookTorrance::new(
+        GgxIsotropic::<f32>::new(0.3).unwrap(),
+        Conductor::<f32, 3>::from_preset(ior::Preset::Gold)
+            .unwrap()
+            .share_divisions()
+            .unwrap(),
+        SmithSeparable,
+    );
+    for n in [0, 1, 15, 16, 17, 1031] {
+        check(&ct, n, 1e-6);
+    }
 }
 
 #[test]

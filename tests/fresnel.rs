@@ -1101,3 +1101,188 @@ fn a_dielectric_model_infers_its_channel_count() {
     assert!(one[0] > 0.0 && one[0].is_finite());
     assert_eq!(rgb, [one[0]; 3]);
 }
+
+// ----------------------------------------------------------------------------------------
+// SharedDivision: one division for all channels on F32FmaSharedDiv
+// ----------------------------------------------------------------------------------------
+
+/// A metal's channel in the `SharedDivision` domain: `k ∈ [0.1, 22]` log-uniform (the bound
+/// included), `η ∈ [1e-4, 22]` log-uniform; the pair is kept inside
+/// `η² + k² ≤ shared_division_max_norm(3)` by scaling it down onto the boundary.
+fn shared_channel() -> impl Strategy<Value = (f64, f64)> {
+    let k = prop_oneof![
+        4 => (-1.0f64..=1.35).prop_map(|e| 10f64.powf(e)),
+        1 => Just(SHARED_DIVISION_MIN_K),
+    ];
+    let eta = prop_oneof![
+        4 => (-4.0f64..=1.35).prop_map(|e| 10f64.powf(e)),
+        1 => Just(MIN_ETA),
+    ];
+    (eta, k).prop_map(|(eta, k)| {
+        let max = shared_division_max_norm(3) * (1.0 - 1e-4);
+        let norm = eta * eta + k * k;
+        if norm <= max {
+            (eta, k)
+        } else {
+            let s = (max / norm).sqrt();
+            ((eta * s).max(MIN_ETA), (k * s).max(SHARED_DIVISION_MIN_K))
+        }
+    })
+}
+
+/// The conductor on `F32FmaSharedDiv` (one division) and on `F32Fma` (per channel), and
+/// `fresnel::conductor` in f64, at one cosine.
+fn shared_and_per_channel(channels: [(f64, f64); 3], c: f64) -> ([f32; 3], [f32; 3], [f64; 3]) {
+    use brdf::real::{F32Fma, F32FmaSharedDiv, Splat};
+    let eta = channels.map(|(e, _)| e as f32);
+    let k = channels.map(|(_, k)| k as f32);
+    let per_channel = Conductor::<f32, 3>::new(eta, k).unwrap();
+    let shared = per_channel.share_divisions().unwrap();
+    let c32 = c as f32;
+    let a = shared
+        .splat::<F32FmaSharedDiv>()
+        .eval(F32FmaSharedDiv(c32))
+        .map(|v| v.0);
+    let b = per_channel.splat::<F32Fma>().eval(F32Fma(c32)).map(|v| v.0);
+    let exact = core::array::from_fn(|i| {
+        fresnel::conductor(f64::from(c32), f64::from(eta[i]), f64::from(k[i]))
+    });
+    (a, b, exact)
+}
+
+proptest! {
+    #![proptest_config(common::config(4000))]
+
+    /// On `F32FmaSharedDiv` the channels share one division: finite over the whole domain
+    /// (grazing and normal incidence, the smallest `k` and `η`, the largest `η² + k²`),
+    /// within 8 ULP of the per-channel form and within 2e-6 relative of f64.
+    #[test]
+    fn shared_division_matches_per_channel(
+        ch in [shared_channel(), shared_channel(), shared_channel()],
+        c in prop_oneof![4 => common::cos_theta(), 1 => Just(0.0), 1 => Just(1.0)],
+    ) {
+        let (shared, per_channel, exact) = shared_and_per_channel(ch, c);
+        for i in 0..3 {
+            prop_assert!(shared[i].is_finite() && (0.0..=1.0).contains(&shared[i]),
+                "channel {i}: {} at {ch:?}, c {c}", shared[i]);
+            let ulps = common::ulps(shared[i], per_channel[i]);
+            prop_assert!(ulps <= 8, "channel {i}: {} vs {} ({ulps} ULP) at {ch:?}, c {c}",
+                shared[i], per_channel[i]);
+            let rel = (f64::from(shared[i]) - exact[i]).abs() / exact[i];
+            prop_assert!(rel <= 2e-6, "channel {i}: {rel:e} from f64 at {ch:?}, c {c}");
+        }
+    }
+}
+
+/// The corners of the domain (smallest and largest `η` and `k` that `share_divisions`
+/// accepts, mixed across channels so the denominators are as unequal as they get) at the
+/// end points and a dense sweep of the cosine.
+#[test]
+fn shared_division_at_the_corners_of_its_domain() {
+    let max = shared_division_max_norm(3) * (1.0 - 1e-4);
+    let corners = [
+        (MIN_ETA, SHARED_DIVISION_MIN_K),
+        (MIN_ETA, max.sqrt()),
+        (max.sqrt(), SHARED_DIVISION_MIN_K),
+        ((max / 2.0).sqrt(), (max / 2.0).sqrt()),
+        (1.0, SHARED_DIVISION_MIN_K),
+        (0.143, 3.983),
+    ];
+    let mut worst = (0u64, 0.0f64);
+    for a in corners {
+        for b in corners {
+            for d in corners {
+                for j in 0..=200 {
+                    let c = (f64::from(j) / 200.0).powi(3);
+                    let (shared, per_channel, exact) = shared_and_per_channel([a, b, d], c);
+                    for i in 0..3 {
+                        assert!(shared[i].is_finite(), "{a:?} {b:?} {d:?} c {c}");
+                        let rel = (f64::from(shared[i]) - exact[i]).abs() / exact[i];
+                        worst.0 = worst.0.max(common::ulps(shared[i], per_channel[i]));
+                        worst.1 = worst.1.max(rel);
+                    }
+                }
+            }
+        }
+    }
+    eprintln!(
+        "shared division at the corners: {} ULP from per-channel, {:.2e} from f64",
+        worst.0, worst.1
+    );
+    assert!(worst.0 <= 8 && worst.1 <= 2e-6, "{worst:?}");
+}
+
+/// Off `F32FmaSharedDiv` a `SharedDivision` conductor is the per-channel one, bit for bit.
+#[test]
+fn shared_division_is_per_channel_on_other_types() {
+    use brdf::real::{F32Fma, Splat};
+    let gold = Conductor::<f32, 3>::from_preset(ior::Preset::Gold).unwrap();
+    let shared = gold.share_divisions().unwrap();
+    for j in 0..=100 {
+        let c = f64::from(j) / 100.0;
+        let c32 = c as f32;
+        assert_eq!(shared.eval(c32), gold.eval(c32));
+        assert_eq!(
+            shared.splat::<F32Fma>().eval(F32Fma(c32)),
+            gold.splat::<F32Fma>().eval(F32Fma(c32))
+        );
+        assert_eq!(shared.splat::<f64>().eval(c), gold.splat::<f64>().eval(c));
+        let l = brdf::f32x8::splat(c32);
+        assert_eq!(
+            shared.splat::<brdf::f32x8>().eval(l),
+            gold.splat::<brdf::f32x8>().eval(l)
+        );
+    }
+}
+
+/// `share_divisions` rejects a dielectric-like channel and an IOR too large for the shared
+/// product, naming the parameter; it accepts the metals of `ior`.
+#[test]
+fn share_divisions_validates_its_domain() {
+    let err = Conductor::<f32, 3>::new([1.5, 0.2, 0.2], [0.0, 3.0, 3.0])
+        .unwrap()
+        .share_divisions()
+        .unwrap_err();
+    assert!(err.to_string().contains("k"), "{err}");
+    let err = Conductor::<f32, 3>::new([0.2, 0.2, 0.2], [3.0, 3.0, 0.099])
+        .unwrap()
+        .share_divisions()
+        .unwrap_err();
+    assert!(err.to_string().contains("k"), "{err}");
+    let err = Conductor::<f64, 3>::new([0.2, 0.2, 0.2], [3.0, 30.0, 3.0])
+        .unwrap()
+        .share_divisions()
+        .unwrap_err();
+    assert!(err.to_string().contains("eta² + k²"), "{err}");
+    // Two channels allow larger IORs, four smaller ones.
+    assert!(
+        Conductor::<f64, 2>::new([0.2, 0.2], [3.0, 30.0])
+            .unwrap()
+            .share_divisions()
+            .is_ok()
+    );
+    assert!(
+        Conductor::<f64, 4>::new([0.2; 4], [3.0, 3.0, 3.0, 10.5])
+            .unwrap()
+            .share_divisions()
+            .is_err()
+    );
+    for name in [
+        "gold",
+        "silver",
+        "copper",
+        "aluminium",
+        "iron",
+        "titanium",
+        "chromium",
+    ] {
+        let preset = ior::Preset::from_name(name).unwrap();
+        assert!(
+            Conductor::<f32, 3>::from_preset(preset)
+                .unwrap()
+                .share_divisions()
+                .is_ok(),
+            "{name}"
+        );
+    }
+}

@@ -17,7 +17,7 @@ use brdf::models::{
     Reciprocity, Turquin, albedo_fit_alpha, albedo_fit_node, albedo_fit_table,
 };
 use brdf::ndf::{Beckmann, Ggx, GgxIsotropic, SmithLambda};
-use brdf::real::{F32Fma, Splat};
+use brdf::real::{F32Fma, F32FmaSharedDiv, Splat};
 use brdf::sampling::{NormalSampler, VisibleNormals};
 use brdf::{Brdf, Real, SampleBrdf, Vec3, f32x8};
 use common::chi2::{Chi2Config, Rng};
@@ -634,7 +634,7 @@ fn batch_check<B: BatchBrdf<3>>(m: &B) -> usize {
         col(|p| p.1.y),
         col(|p| p.1.z),
     ];
-    let fused = m.fused();
+    let (fused, shared) = (m.fused(), m.shared_div());
     let mut ran = 0;
     for isa in [Isa::Portable, Isa::Avx2Fma, Isa::Avx512] {
         let mut out = [
@@ -659,6 +659,15 @@ fn batch_check<B: BatchBrdf<3>>(m: &B) -> usize {
             let wo = Vec3::new(d[3][i], d[4][i], d[5][i]);
             let want: [f32; 3] = if isa == Isa::Portable {
                 m.eval(wi, wo)
+            } else if batch::shares_divisions() {
+                let f = |w: Vec3<f32>| {
+                    Vec3::new(
+                        F32FmaSharedDiv(w.x),
+                        F32FmaSharedDiv(w.y),
+                        F32FmaSharedDiv(w.z),
+                    )
+                };
+                shared.eval(f(wi), f(wo)).map(|v| v.0)
             } else {
                 let f = |w: Vec3<f32>| Vec3::new(F32Fma(w.x), F32Fma(w.y), F32Fma(w.z));
                 fused.eval(f(wi), f(wo)).map(|v| v.0)

@@ -127,12 +127,14 @@ echo "== Mitsuba roughconductor eval: $N pairs, $REPS repetitions"
     --warmup "$WARMUP" --out "$WORK/mitsuba-eval.bin" --timing "$WORK/mitsuba-eval.json"
 STATUS=0
 # GgxIsotropic: the crate's isotropic GGX type; ggx: its anisotropy-capable Ggx (as Mitsuba's);
-# -newton: the same with brdf::fast::NewtonSqrtRecip<3, 3> (square roots and divisions by
-# refined estimates, within a few ULP of the exact policy).
-for V in isotropic ggx isotropic-newton ggx-newton; do
-    NDF=${V%-newton}
+# -shared: the conductor with SharedDivision (one division for the three channels where
+# brdf::batch::shares_divisions(): Intel CPUs; the same as exact elsewhere); -newton: the same
+# with brdf::fast::NewtonSqrtRecip<3, 3> (square roots and divisions by refined estimates,
+# within a few ULP of the exact policy).
+for V in isotropic ggx isotropic-shared ggx-shared isotropic-newton ggx-newton; do
+    NDF=${V%%-*}
     POLICY=exact
-    [ "$V" = "$NDF" ] || POLICY=newton
+    [ "$V" = "$NDF" ] || POLICY=${V#*-}
     echo "== brdf batch::eval ($V): $N pairs, $REPS repetitions"
     "$BIN" --pairs "$PAIRS" --alpha "$ALPHA" --eta "$ETA" --k "$K" --ndf "$NDF" --policy "$POLICY" \
         --reps "$REPS" --warmup "$WARMUP" --values "$WORK/brdf-eval-$V.bin" --timing "$WORK/brdf-eval-$V.json"
@@ -168,6 +170,8 @@ work, cpu, family, llvm, sample, brdf = sys.argv[1:]
 load = lambda name: json.load(open(os.path.join(work, name)))
 w, m = load("workload.json"), load("mitsuba-eval.json")
 VARIANTS = (("isotropic", "GgxIsotropic"), ("ggx", "Ggx"),
+            ("isotropic-shared", "GgxIsotropic, SharedDivision"),
+            ("ggx-shared", "Ggx, SharedDivision"),
             ("isotropic-newton", "GgxIsotropic, NewtonSqrtRecip<3,3>"),
             ("ggx-newton", "Ggx, NewtonSqrtRecip<3,3>"))
 b, c = {}, {}
@@ -184,7 +188,8 @@ print(f"  CPU: {cpu} (family {family}); load average: {load_avg}")
 jit = "loaded from Dr.Jit's disk cache" if m["compile_ms"] == 0 else f"{m['compile_ms']:.0f} ms"
 print(f"  Mitsuba {w['mitsuba']}, Dr.Jit {w['drjit']}, {w['variant']}, {w['threads']} thread "
       f"(process CPU / wall {m['cpu_per_wall']:.2f}), {llvm}; JIT compilation ({jit}) excluded")
-print(f"  {brdf}, release build")
+shares = b["isotropic"].get("shares_divisions", False)
+print(f"  {brdf}, release build; batch::shares_divisions() = {shares}")
 print(f"  {'M evaluations/s':48} {'median':>8} {'best':>8}   ({m['reps']} repetitions)")
 rows = [("Mitsuba, per call (trace + kernel)", m["wall_median_s"], m["wall_best_s"]),
         ("Mitsuba, kernel alone", m["kernel_median_s"], m["kernel_best_s"])]

@@ -546,7 +546,9 @@ impl<S: Scalar, const N: usize> FresnelAverage<N> for F82Tint<S, N> {
     }
 }
 
-impl<S: Scalar, const N: usize, P: crate::fast::SqrtFn> FresnelAverage<N> for Conductor<S, N, P> {
+impl<S: Scalar, const N: usize, P: crate::fast::SqrtFn, D: crate::fresnel::DivisionPlan>
+    FresnelAverage<N> for Conductor<S, N, P, D>
+{
     /// [`energy::fresnel_average`] of the exact complex-IOR reflectance, per channel.
     fn average(&self) -> [f64; N] {
         by_quadrature(self)

@@ -30,7 +30,7 @@ use std::time::Instant;
 use std::{fs, process};
 
 use brdf::batch::{self, BatchBrdf, BatchSample, Directions, Isa, SampleOut};
-use brdf::fast::NewtonSqrtRecip;
+use brdf::fast::{ExactSqrt, NewtonSqrtRecip};
 use brdf::fresnel::Conductor;
 use brdf::masking::SmithSeparable;
 use brdf::models::{CookTorrance, Properties};
@@ -68,14 +68,16 @@ impl<B: Splat> Splat for TimesCosThetaI<B> {
 }
 
 const USAGE: &str = "usage: peer_roughconductor --pairs FILE --values OUT --timing OUT.json \\
-    --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--policy exact|newton]
+    --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--policy exact|shared|newton]
     [--mode eval|sample] [--strategy vndf|caps] [--isa detect|portable|avx2|avx512]
     [--reps N] [--warmup N]
 
 Times brdf::batch::eval on Mitsuba's roughconductor workload over the pairs of FILE (written
 by benches/peers/peers.py gen), writes the values (3 channels) to OUT and the timing to
 OUT.json. --policy newton takes the half vector, the final division and the conductor's
-square roots and divisions by brdf::fast::NewtonSqrtRecip<3, 3> (default: exact).
+square roots and divisions by brdf::fast::NewtonSqrtRecip<3, 3>; --policy shared gives the
+conductor SharedDivision (one division for the three channels where
+brdf::batch::shares_divisions(), e.g. on Intel); default: exact.
 --mode sample times brdf::batch::sample on the viewer directions and uniforms of FILE
 (--strategy vndf: visible normals, as Mitsuba; caps: the crate's default spherical caps)
 and writes wi (3 arrays), pdf and the weight (3 arrays). --isa picks the batch kernel
@@ -322,9 +324,16 @@ fn main() {
     times.sort_by(f64::total_cmp);
     let median = times[times.len() / 2];
     let json = format!(
-        "{{\n \"n\": {n},\n \"isa\": \"{:?}\",\n \"ndf\": \"{}\",\n \"policy\": \"{}\",\n \"mode\": \"{}\",\n \
+        "{{\n \"n\": {n},\n \"isa\": \"{:?}\",\n \"shares_divisions\": {},\n \"ndf\": \"{}\",\n \"policy\": \"{}\",\n \"mode\": \"{}\",\n \
          \"strategy\": \"{}\",\n \"reps\": {},\n \"median_s\": {median:e},\n \"best_s\": {:e}\n}}\n",
-        a.isa, a.ndf, a.policy, a.mode, a.strategy, a.reps, times[0],
+        a.isa,
+        batch::shares_divisions(),
+        a.ndf,
+        a.policy,
+        a.mode,
+        a.strategy,
+        a.reps,
+        times[0],
     );
     fs::write(&a.timing, json).unwrap_or_else(|e| fail(format!("{}: {e}", a.timing)));
 }
@@ -337,35 +346,32 @@ fn eval_mode(
     gold: Conductor<f32, 3>,
     out: &mut [Vec<f32>; 3],
 ) -> Vec<f64> {
-    let newton = match a.policy.as_str() {
-        "exact" => false,
-        "newton" => true,
-        other => fail(format!("--policy {other:?}: expected exact or newton")),
-    };
     type Fast = NewtonSqrtRecip<3, 3>;
-    match (a.ndf.as_str(), newton) {
-        ("isotropic", false) => {
-            let d = GgxIsotropic::<f32>::new(a.alpha).unwrap_or_else(|e| fail(e));
-            let m = TimesCosThetaI(CookTorrance::new(d, gold, SmithSeparable));
+    // One arm per (policy, NDF): the model types differ.
+    macro_rules! run {
+        ($d:expr, $fresnel:expr, $sqrt:ty) => {{
+            let d = $d.unwrap_or_else(|e| fail(e));
+            let m =
+                TimesCosThetaI(CookTorrance::new(d, $fresnel, SmithSeparable).with_sqrt::<$sqrt>());
             time_eval(&m, wi, wo, out, a)
-        }
-        ("isotropic", true) => {
-            let d = GgxIsotropic::<f32>::new(a.alpha).unwrap_or_else(|e| fail(e));
-            let fast = gold.with_policy::<Fast>();
-            let m = TimesCosThetaI(CookTorrance::new(d, fast, SmithSeparable).with_sqrt::<Fast>());
-            time_eval(&m, wi, wo, out, a)
-        }
-        ("ggx", false) => {
-            let d = Ggx::<f32>::anisotropic(a.alpha, a.alpha).unwrap_or_else(|e| fail(e));
-            let m = TimesCosThetaI(CookTorrance::new(d, gold, SmithSeparable));
-            time_eval(&m, wi, wo, out, a)
-        }
-        ("ggx", true) => {
-            let d = Ggx::<f32>::anisotropic(a.alpha, a.alpha).unwrap_or_else(|e| fail(e));
-            let fast = gold.with_policy::<Fast>();
-            let m = TimesCosThetaI(CookTorrance::new(d, fast, SmithSeparable).with_sqrt::<Fast>());
-            time_eval(&m, wi, wo, out, a)
-        }
-        (other, _) => fail(format!("--ndf {other:?}: expected isotropic or ggx")),
+        }};
+        ($fresnel:expr, $sqrt:ty) => {
+            match a.ndf.as_str() {
+                "isotropic" => run!(GgxIsotropic::<f32>::new(a.alpha), $fresnel, $sqrt),
+                "ggx" => run!(Ggx::<f32>::anisotropic(a.alpha, a.alpha), $fresnel, $sqrt),
+                other => fail(format!("--ndf {other:?}: expected isotropic or ggx")),
+            }
+        };
+    }
+    match a.policy.as_str() {
+        "exact" => run!(gold, ExactSqrt),
+        "shared" => run!(
+            gold.share_divisions().unwrap_or_else(|e| fail(e)),
+            ExactSqrt
+        ),
+        "newton" => run!(gold.with_policy::<Fast>(), Fast),
+        other => fail(format!(
+            "--policy {other:?}: expected exact, shared or newton"
+        )),
     }
 }
