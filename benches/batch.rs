@@ -356,6 +356,21 @@ fn bench_rough_conductor(c: &mut Criterion) {
     bench_isas(&mut g, "batch", batch::eval_with, &m, &wi, &wo, &mut out);
     let piped = batch::eval_pipelined_with;
     bench_isas(&mut g, "batch_pipelined", piped, &m, &wi, &wo, &mut out);
+    // The conductor's channels sharing one division where batch::shares_divisions() (Intel).
+    let shared = TimesCos(CookTorrance::new(
+        m.0.ndf,
+        m.0.fresnel.share_divisions().unwrap(),
+        SmithSeparable,
+    ));
+    bench_isas(
+        &mut g,
+        "batch_shared_division",
+        batch::eval_with,
+        &shared,
+        &wi,
+        &wo,
+        &mut out,
+    );
     // Every square root and division of the geometry and the conductor by refined estimates.
     type Fast = NewtonSqrtRecip<3, 3>;
     let fast = TimesCos(

@@ -55,9 +55,9 @@ use wide::{u32x4, u32x8, u32x16, u64x4};
 
 /// A number or a SIMD register of numbers on which every formula of the crate runs.
 ///
-/// Implemented for `f32`, `f64`, [`F32Fma`], [`f32x4`], [`f32x8`], [`f32x16`] and [`f64x4`],
-/// and sealed through its supertrait [`Bits`] (the bit tricks of [`crate::fast`], kept out of
-/// this list). The arithmetic operators act lane-wise; comparisons return a [`Real::Mask`]
+/// Implemented for `f32`, `f64`, [`F32Fma`], [`F32FmaSharedDiv`], [`f32x4`], [`f32x8`],
+/// [`f32x16`] and [`f64x4`], and sealed through its supertrait [`Bits`] (the bit tricks of
+/// [`crate::fast`], kept out of this list). The arithmetic operators act lane-wise; comparisons return a [`Real::Mask`]
 /// that [`Real::select`] consumes.
 ///
 /// # Examples
@@ -219,8 +219,8 @@ pub trait Real:
 /// These are implementation tricks, not formula vocabulary, so they live apart from
 /// [`Real`] (which has them as a supertrait, so `fast`'s generic bodies can call them on any
 /// `R: Real`). The trait is sealed: it is implemented for every lane type of the crate
-/// (`f32`, `f64`, [`F32Fma`], [`f32x4`], [`f32x8`], [`f32x16`], [`f64x4`]) and cannot be
-/// implemented elsewhere, which also seals [`Real`]. Each body reads the IEEE 754 fields of
+/// (`f32`, `f64`, [`F32Fma`], [`F32FmaSharedDiv`], [`f32x4`], [`f32x8`], [`f32x16`],
+/// [`f64x4`]) and cannot be implemented elsewhere, which also seals [`Real`]. Each body reads the IEEE 754 fields of
 /// its precision, named once in the private `binary32` / `binary64` layouts of this module.
 pub trait Bits: Sized + sealed::Sealed {
     /// Splits a finite nonzero number into mantissa and exponent: `|self| = m·2ᵉ` with

@@ -59,6 +59,7 @@ use brdf::models::{
 };
 use brdf::ndf::{Beckmann, Ggx, GgxIsotropic, Ndf, SmithLambda};
 use brdf::normalization as norm;
+use brdf::real::{F32FmaSharedDiv, Splat};
 use brdf::vec3::half_vector;
 use brdf::{Brdf, Real, Vec3, f32x8, fast, ior};
 
@@ -734,12 +735,43 @@ fn fresnel_table() -> Table {
             at,
             Some(cost_metal_f82),
         ));
+        // The f32 arithmetic of the shared division (the Intel batch kernels' form) against
+        // f64: its error is rounding, so it is measured in f32, against the same reference.
+        if let Ok(shared) = Conductor::<f32, 3>::from_preset(m)
+            .expect("valid preset")
+            .share_divisions()
+        {
+            let shared = shared.splat::<F32FmaSharedDiv>();
+            let mut wd = Worst::new();
+            for &c in &cosines {
+                let e = exact.eval(c);
+                let d = shared.eval(F32FmaSharedDiv(c as f32));
+                for ch in 0..3 {
+                    wd.add(f64::from(d[ch].0), e[ch], 0.0, (c, ch));
+                }
+            }
+            rows.push(Row::new(
+                &format!(
+                    "f32 `share_divisions()` on `F32FmaSharedDiv`, {}",
+                    m.label()
+                ),
+                "exact `conductor`",
+                &domain,
+                &wd,
+                Locate::Abs,
+                at,
+                None,
+            ));
+        }
     }
     Table {
         title: "Fresnel (approximation error in f64)",
         note: "Worst at: the maximum absolute error (reflectance is in [0, 1]). Cost in f32: \
                dielectric rows against `dielectric(cos θ, η)` with F0 precomputed; metal rows \
-               are 3-channel `FresnelTerm::eval` against `Conductor` (timed on gold)."
+               are 3-channel `FresnelTerm::eval` against `Conductor` (timed on gold). The \
+               `share_divisions()` rows are f32 arithmetic (the conductor's channels sharing one \
+               division, as the batch kernels run it on Intel): their error is rounding; their \
+               speed is the batch path's (README, Performance)."
             .into(),
         rows,
     }
