@@ -1282,6 +1282,12 @@ impl<R: Real, const N: usize, P: SqrtFn, D: DivisionPlan> Conductor<R, N, P, D> 
     #[inline]
     #[must_use]
     pub fn with_policy<P2: SqrtFn>(self) -> Conductor<R, N, P2, D> {
+        self.retyped()
+    }
+
+    /// The same constants under other type parameters.
+    #[inline]
+    fn retyped<P2, D2>(self) -> Conductor<R, N, P2, D2> {
         Conductor {
             eta: self.eta,
             k: self.k,
@@ -1325,15 +1331,7 @@ impl<R: Real, const N: usize, P: SqrtFn, D: DivisionPlan> Conductor<R, N, P, D> 
             let norm = eta * eta + k * k;
             error::in_range("eta² + k²", norm, 0.0, max_norm, SHARED_NORM_DOMAIN)?;
         }
-        Ok(Conductor {
-            eta: self.eta,
-            k: self.k,
-            p: self.p,
-            q: self.q,
-            nk: self.nk,
-            nk2: self.nk2,
-            _p: PhantomData,
-        })
+        Ok(self.retyped())
     }
 
     /// The constants of channel `i`.
