@@ -206,7 +206,10 @@ where
 /// division cost more than the multiplications that replace two divisions) and 0.93–0.96×
 /// on an AMD EPYC Zen 4, whose divider is not the bound. Results differ between the two
 /// forms by a few ULP (`tests/fresnel.rs`); each kernel equals `eval` on its own form bit
-/// for bit. The pipelined passes and the batch samplers run the [`F32Fma`] form everywhere.
+/// for bit. The forms differ only where a material opted in
+/// ([`crate::fresnel::Conductor::share_divisions`]): a model without such a term gives the
+/// same bits on every CPU. The pipelined passes and the batch samplers run the [`F32Fma`]
+/// form everywhere.
 #[must_use]
 pub fn shares_divisions() -> bool {
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
