@@ -10,7 +10,7 @@ use brdf::ior::Preset;
 use brdf::masking::{SmithHeightCorrelated, SmithSeparable};
 use brdf::models::{CookTorrance, Lambert, OrenNayar};
 use brdf::ndf::{Beckmann, GgxIsotropic};
-use brdf::real::F32Fma;
+use brdf::real::{F32Fma, F32FmaSharedDiv};
 use brdf::sampling::{BoundedVisibleNormals, FullDistribution, SphericalCaps, VisibleNormals};
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 
@@ -49,6 +49,7 @@ pub fn bench_sampler<B, const C: usize>(c: &mut Criterion, group: &str, name: &s
 where
     B: batch::BatchSample<C>,
     B::Fused: SampleBrdf<F32Fma, C>,
+    B::SharedDiv: SampleBrdf<F32FmaSharedDiv, C>,
 {
     let wo = view_directions();
     let u = [uniforms(1), uniforms(2), uniforms(3)];
@@ -158,6 +159,20 @@ fn roughconductor(c: &mut Criterion) {
         group,
         "spherical_caps",
         &ct.sampled_with::<SphericalCaps>(),
+    );
+    // The conductor's channels sharing one division where batch::shares_divisions() (Intel).
+    let shared = CookTorrance::new(ct.ndf, gold.share_divisions().unwrap(), SmithSeparable);
+    bench_sampler(
+        c,
+        group,
+        "visible_normals_shared_division",
+        &shared.sampled_with::<VisibleNormals>(),
+    );
+    bench_sampler(
+        c,
+        group,
+        "spherical_caps_shared_division",
+        &shared.sampled_with::<SphericalCaps>(),
     );
 }
 

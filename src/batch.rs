@@ -604,6 +604,7 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
 pub trait BatchSample<const N: usize>: BatchBrdf<N> + SampleBrdf<f32, N>
 where
     Self::Fused: SampleBrdf<F32Fma, N>,
+    Self::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
 {
 }
 
@@ -611,6 +612,7 @@ impl<B, const N: usize> BatchSample<N> for B
 where
     B: BatchBrdf<N> + SampleBrdf<f32, N>,
     B::Fused: SampleBrdf<F32Fma, N>,
+    B::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
 {
 }
 
@@ -719,6 +721,7 @@ pub fn sample_with<B, const N: usize>(
 where
     B: BatchSample<N>,
     B::Fused: SampleBrdf<F32Fma, N>,
+    B::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
 {
     let n = wo.len();
     assert!(
@@ -736,23 +739,51 @@ where
     if !isa.is_available() {
         return Err(Unavailable(isa));
     }
-    let fused = brdf.fused();
-    let fused = PerSample::<F32Fma, B::Fused>(&fused, PhantomData);
+    if isa == Isa::Portable {
+        PerSample::<f32, B>(brdf, PhantomData).run(wo, u, out);
+    } else if shares_divisions() {
+        let shared = brdf.shared_div();
+        sample_fma(
+            isa,
+            &PerSample::<F32FmaSharedDiv, B::SharedDiv>(&shared, PhantomData),
+            wo,
+            u,
+            out,
+        );
+    } else {
+        let fused = brdf.fused();
+        sample_fma(
+            isa,
+            &PerSample::<F32Fma, B::Fused>(&fused, PhantomData),
+            wo,
+            u,
+            out,
+        );
+    }
+    Ok(())
+}
+
+/// Runs `l` compiled for `isa`'s FMA instruction sets (available: the caller checked).
+#[inline]
+fn sample_fma<L: SampleLoop<N>, const N: usize>(
+    isa: Isa,
+    l: &L,
+    wo: Directions<'_>,
+    u: [&[f32]; 3],
+    out: &mut SampleOut<'_, N>,
+) {
     match isa {
-        Isa::Portable => PerSample::<f32, B>(brdf, PhantomData).run(wo, u, out),
-        // SAFETY: `is_available` checked at run time that the CPU has these features.
+        // SAFETY: the caller checked with `is_available` that the CPU has these features.
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
-        Isa::Avx2Fma => unsafe { sample_kernel_avx2(&fused, wo, u, out) },
+        Isa::Avx2Fma => unsafe { sample_kernel_avx2(l, wo, u, out) },
         // SAFETY: as above.
         #[cfg(all(feature = "std", target_arch = "x86_64"))]
-        Isa::Avx512 => unsafe { sample_kernel_avx512(&fused, wo, u, out) },
-        #[cfg(not(all(feature = "std", target_arch = "x86_64")))]
+        Isa::Avx512 => unsafe { sample_kernel_avx512(l, wo, u, out) },
         _ => {
-            let _ = fused;
+            let _ = (l, wo, u, out);
             unreachable!("only Portable is available here")
         }
     }
-    Ok(())
 }
 
 /// [`sample_with`] on the widest instruction set this CPU has ([`Isa::detect`]).
@@ -785,6 +816,7 @@ pub fn sample<B, const N: usize>(
 ) where
     B: BatchSample<N>,
     B::Fused: SampleBrdf<F32Fma, N>,
+    B::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
 {
     // The detected variant is available by construction.
     let _ = sample_with(Isa::detect(), brdf, wo, u, out);

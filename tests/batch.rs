@@ -292,11 +292,13 @@ fn mismatched_lengths_panic() {
 }
 
 /// `batch::sample_with` on every available variant equals `SampleBrdf::sample` bit for bit:
-/// on the `f32` model for the portable loop, on its `F32Fma` form for the FMA loops.
+/// on the `f32` model for the portable loop, on the form the FMA loops run (`F32FmaSharedDiv`
+/// where `batch::shares_divisions()`, else `F32Fma`) for the FMA loops.
 fn check_sample<B, const N: usize>(name: &str, brdf: &B, n: usize) -> usize
 where
     B: batch::BatchSample<N>,
     B::Fused: brdf::SampleBrdf<F32Fma, N>,
+    B::SharedDiv: brdf::SampleBrdf<F32FmaSharedDiv, N>,
 {
     use brdf::SampleBrdf;
     let d = pairs(n);
@@ -311,7 +313,7 @@ where
             .collect(),
         d[2].iter().map(|z| z.min(0.999_999_9)).collect(),
     ];
-    let fused = brdf.fused();
+    let (fused, shared) = (brdf.fused(), brdf.shared_div());
     let mut ran = 0;
     for isa in Isa::ALL {
         let (mut x, mut y, mut z, mut pdf) =
@@ -334,6 +336,10 @@ where
             let (sx, sy, sz, sp, sw): (f32, f32, f32, f32, [f32; N]) = if isa == Isa::Portable {
                 let s = brdf.sample(wo_i, ui);
                 (s.wi.x, s.wi.y, s.wi.z, s.pdf, s.weight)
+            } else if batch::shares_divisions() {
+                let d = F32FmaSharedDiv;
+                let s = shared.sample(Vec3::new(d(wo_i.x), d(wo_i.y), d(wo_i.z)), ui.map(d));
+                (s.wi.x.0, s.wi.y.0, s.wi.z.0, s.pdf.0, s.weight.map(|v| v.0))
             } else {
                 let wo_f = Vec3::new(F32Fma(wo_i.x), F32Fma(wo_i.y), F32Fma(wo_i.z));
                 let s = fused.sample(wo_f, ui.map(F32Fma));
@@ -359,4 +365,14 @@ fn batch_sampling_equals_scalar_sampling_on_every_isa() {
     let on = brdf::models::OrenNayar::new([0.6_f32], 0.5).unwrap();
     assert!(check_sample("lambert", &lambert, 1001) >= 1);
     assert!(check_sample("oren-nayar", &on, 1001) >= 1);
+    // A conductor whose channels share one division where the batch path does (Intel).
+    let gold = CookTorrance::new(
+        GgxIsotropic::<f32>::new(0.3).unwrap(),
+        Conductor::<f32, 3>::from_preset(ior::Preset::Gold)
+            .unwrap()
+            .share_divisions()
+            .unwrap(),
+        SmithSeparable,
+    );
+    assert!(check_sample("gold, shared division", &gold, 1001) >= 1);
 }

@@ -148,11 +148,16 @@ if [ "$SAMPLE" = 1 ]; then
     echo "== Mitsuba roughconductor sample: $N pairs, $REPS repetitions"
     "$py" "$PEERS" sample --variant "$VARIANT" --alpha "$ALPHA" --pairs "$PAIRS" --reps "$REPS" \
         --warmup "$WARMUP" --out "$WORK/mitsuba-sample.bin" --timing "$WORK/mitsuba-sample.json"
-    for ST in vndf caps; do
+    # vndf: visible normals (as Mitsuba); caps: the crate's default spherical caps; -shared:
+    # the conductor with SharedDivision (as for eval).
+    for ST in vndf caps vndf-shared caps-shared; do
+        STRATEGY=${ST%-shared}
+        POLICY=exact
+        [ "$ST" = "$STRATEGY" ] || POLICY=shared
         echo "== brdf batch::sample (GgxIsotropic, $ST): $N pairs, $REPS repetitions"
-        "$BIN" --mode sample --strategy "$ST" --pairs "$PAIRS" --alpha "$ALPHA" --eta "$ETA" --k "$K" \
-            --reps "$REPS" --warmup "$WARMUP" --values "$WORK/brdf-sample-$ST.bin" \
-            --timing "$WORK/brdf-sample-$ST.json"
+        "$BIN" --mode sample --strategy "$STRATEGY" --policy "$POLICY" --pairs "$PAIRS" \
+            --alpha "$ALPHA" --eta "$ETA" --k "$K" --reps "$REPS" --warmup "$WARMUP" \
+            --values "$WORK/brdf-sample-$ST.bin" --timing "$WORK/brdf-sample-$ST.json"
         echo "== samples ($ST)"
         "$py" "$PEERS" compare-sample --pairs "$PAIRS" --mitsuba "$WORK/mitsuba-sample.bin" \
             --brdf "$WORK/brdf-sample-$ST.bin" --workload "$WORK/workload.json" \
@@ -209,11 +214,13 @@ for ndf, name in VARIANTS:
 if sample == "1":
     s = load("mitsuba-sample.json")
     print(f"\nroughconductor sample, {n} pairs, one thread (M samples/s, medians of {s['reps']}):")
-    print(f"  Mitsuba, per call (trace + kernel) {rate(s['wall_median_s']):8.1f}")
-    print(f"  Mitsuba, kernel alone              {rate(s['kernel_median_s']):8.1f}")
-    for st, name in (("vndf", "visible normals"), ("caps", "spherical caps")):
+    print(f"  {'Mitsuba, per call (trace + kernel)':46} {rate(s['wall_median_s']):8.1f}")
+    print(f"  {'Mitsuba, kernel alone':46} {rate(s['kernel_median_s']):8.1f}")
+    for st, name in (("vndf", "visible normals"), ("caps", "spherical caps"),
+                     ("vndf-shared", "vis. normals, shared div."),
+                     ("caps-shared", "caps, shared division")):
         t, e = load(f"brdf-sample-{st}.json"), load(f"compare-sample-{st}.json")
-        print(f"  brdf, GgxIsotropic, {name:15} {rate(t['median_s']):8.1f}   "
+        print(f"  brdf, GgxIsotropic, {name:26} {rate(t['median_s']):8.1f}   "
               f"({t['isa']}; {s['wall_median_s'] / t['median_s']:.2f}x per call, "
               f"{s['kernel_median_s'] / t['median_s']:.2f}x the kernel)")
         print(f"    mean weight z (brdf - Mitsuba): {', '.join(f'{x:+.2f}' for x in e['mean_weight_z'])}; "

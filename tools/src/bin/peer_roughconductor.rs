@@ -252,6 +252,7 @@ fn time_sample<B: BatchSample<3>>(
 ) -> Vec<f64>
 where
     B::Fused: brdf::SampleBrdf<brdf::real::F32Fma, 3>,
+    B::SharedDiv: brdf::SampleBrdf<brdf::real::F32FmaSharedDiv, 3>,
 {
     let run = |out: &mut [Vec<f32>; 7]| {
         let [x, y, z, pdf, r, g, b] = out;
@@ -286,23 +287,29 @@ fn sample_mode(a: &Args, p: &[Vec<f32>], gold: Conductor<f32, 3>) -> (Vec<f64>, 
     // normal (u[2] picks a lobe in mixtures).
     let u = [&p[7][..], &p[8][..], &p[6][..]];
     let mut out: [Vec<f32>; 7] = std::array::from_fn(|_| vec![0.0f32; n]);
-    if a.policy != "exact" {
-        fail("--mode sample takes --policy exact only");
-    }
     macro_rules! run {
-        ($d:expr) => {{
-            let ct = CookTorrance::new($d.unwrap_or_else(|e| fail(e)), gold, SmithSeparable);
+        ($d:expr, $fresnel:expr) => {{
+            let ct = CookTorrance::new($d.unwrap_or_else(|e| fail(e)), $fresnel, SmithSeparable);
             match a.strategy.as_str() {
                 "vndf" => time_sample(&ct.sampled_with::<VisibleNormals>(), wo, u, &mut out, a),
                 "caps" => time_sample(&ct.sampled_with::<SphericalCaps>(), wo, u, &mut out, a),
                 other => fail(format!("--strategy {other:?}: expected vndf or caps")),
             }
         }};
+        ($fresnel:expr) => {
+            match a.ndf.as_str() {
+                "isotropic" => run!(GgxIsotropic::<f32>::new(a.alpha), $fresnel),
+                "ggx" => run!(Ggx::<f32>::anisotropic(a.alpha, a.alpha), $fresnel),
+                other => fail(format!("--ndf {other:?}: expected isotropic or ggx")),
+            }
+        };
     }
-    let times = match a.ndf.as_str() {
-        "isotropic" => run!(GgxIsotropic::<f32>::new(a.alpha)),
-        "ggx" => run!(Ggx::<f32>::anisotropic(a.alpha, a.alpha)),
-        other => fail(format!("--ndf {other:?}: expected isotropic or ggx")),
+    let times = match a.policy.as_str() {
+        "exact" => run!(gold),
+        "shared" => run!(gold.share_divisions().unwrap_or_else(|e| fail(e))),
+        other => fail(format!(
+            "--mode sample takes --policy exact or shared, not {other:?}"
+        )),
     };
     (times, out.into())
 }
