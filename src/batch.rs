@@ -18,7 +18,9 @@
 //!
 //! * [`Isa::Portable`] results equal [`Brdf::eval`] on the `f32` model bit for bit;
 //! * [`Isa::Avx2Fma`] and [`Isa::Avx512`] results equal `eval` on the [`F32Fma`] model
-//!   (`brdf.splat::<F32Fma>()`) bit for bit, and differ from the `f32` model by the rounding of
+//!   (`brdf.splat::<F32Fma>()`) bit for bit — on Intel CPUs on the [`F32FmaSharedDiv`] model
+//!   instead, which differs only where a material opted into shared divisions (see
+//!   [`shares_divisions`]) — and differ from the `f32` model by the rounding of
 //!   the products that `f32` leaves unfused: at most 8 ULP for every model in
 //!   `tests/models.rs` but Kajiya-Kay (64: its `pow` with exponents up to 2·10⁴ amplifies
 //!   them), and 4·10⁻⁷ relative on the batch tests' workloads.
@@ -193,8 +195,8 @@ where
     }
 }
 
-/// Whether the FMA kernels ([`Isa::Avx2Fma`], [`Isa::Avx512`]) of [`eval_with`], [`eval`] and
-/// [`eval_glam`] run a model's [`F32FmaSharedDiv`] form ([`BatchBrdf::shared_div`]) rather
+/// Whether the FMA kernels ([`Isa::Avx2Fma`], [`Isa::Avx512`]) of [`eval_with`], [`eval`],
+/// [`eval_glam`], [`sample_with`] and [`sample`] run a model's [`F32FmaSharedDiv`] form ([`BatchBrdf::shared_div`]) rather
 /// than its [`F32Fma`] form: `true` on Intel CPUs (the `cpuid` vendor string
 /// `GenuineIntel`), `false` elsewhere and without `std` or off x86-64. Decided once per
 /// process.
@@ -208,8 +210,8 @@ where
 /// forms by a few ULP (`tests/fresnel.rs`); each kernel equals `eval` on its own form bit
 /// for bit. The forms differ only where a material opted in
 /// ([`crate::fresnel::Conductor::share_divisions`]): a model without such a term gives the
-/// same bits on every CPU. The pipelined passes and the batch samplers run the [`F32Fma`]
-/// form everywhere.
+/// same bits on every CPU. The batch samplers ([`sample_with`], [`sample`]) choose the same
+/// way; the pipelined passes run the [`F32Fma`] form everywhere.
 #[must_use]
 pub fn shares_divisions() -> bool {
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
@@ -371,7 +373,8 @@ fn dispatch_per_pair<B: BatchBrdf<N>, const N: usize>(
 ///
 /// Returns [`Unavailable`] if the CPU lacks `isa`. [`Isa::Portable`] results equal
 /// [`Brdf::eval`] on `brdf` bit for bit; the FMA variants equal `eval` on
-/// [`BatchBrdf::fused`] bit for bit (see the [module docs](self)).
+/// [`BatchBrdf::fused`] bit for bit, or on [`BatchBrdf::shared_div`] where
+/// [`shares_divisions`] (see the [module docs](self)).
 ///
 /// # Panics
 ///
@@ -701,7 +704,8 @@ fn sample_kernel_avx512<L: SampleLoop<N>, const N: usize>(
 /// weight to `out`.
 ///
 /// [`Isa::Portable`] results equal [`SampleBrdf::sample`] on `brdf` bit for bit; the FMA
-/// variants equal `sample` on [`BatchBrdf::fused`] bit for bit, as for [`eval_with`].
+/// variants equal `sample` on [`BatchBrdf::fused`] (or [`BatchBrdf::shared_div`] where
+/// [`shares_divisions`]) bit for bit, as for [`eval_with`].
 ///
 /// # Errors
 ///
