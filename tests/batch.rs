@@ -185,18 +185,28 @@ fn every_available_variant_matches_scalar_rough_conductor_rgb() {
     check(&sum, 517, 1e-6);
 }
 
-/// A conductor whose channels share one division on divider-bound cores: the FMA kernels
-/// equal `eval` on the form they run (`F32FmaSharedDiv` on Intel), and both forms agree.
-#[test]
-fn every_available_variant_matches_scalar_shared_division_conductor() {
-    let ct = CookTorrance::new(
+/// Mitsuba's rough gold workload (GGX α = 0.3, separable Smith) with `share_divisions()`.
+fn shared_division_gold() -> CookTorrance<
+    f32,
+    GgxIsotropic<f32>,
+    Conductor<f32, 3, brdf::fast::ExactSqrt, brdf::fresnel::SharedDivision>,
+    SmithSeparable,
+> {
+    CookTorrance::new(
         GgxIsotropic::<f32>::new(0.3).unwrap(),
         Conductor::<f32, 3>::from_preset(ior::Preset::Gold)
             .unwrap()
             .share_divisions()
             .unwrap(),
         SmithSeparable,
-    );
+    )
+}
+
+/// A conductor whose channels share one division on divider-bound cores: the FMA kernels
+/// equal `eval` on the form they run (`F32FmaSharedDiv` on Intel), and both forms agree.
+#[test]
+fn every_available_variant_matches_scalar_shared_division_conductor() {
+    let ct = shared_division_gold();
     for n in [0, 1, 15, 16, 17, 1031] {
         check(&ct, n, 1e-6);
     }
@@ -366,13 +376,6 @@ fn batch_sampling_equals_scalar_sampling_on_every_isa() {
     assert!(check_sample("lambert", &lambert, 1001) >= 1);
     assert!(check_sample("oren-nayar", &on, 1001) >= 1);
     // A conductor whose channels share one division where the batch path does (Intel).
-    let gold = CookTorrance::new(
-        GgxIsotropic::<f32>::new(0.3).unwrap(),
-        Conductor::<f32, 3>::from_preset(ior::Preset::Gold)
-            .unwrap()
-            .share_divisions()
-            .unwrap(),
-        SmithSeparable,
-    );
+    let gold = shared_division_gold();
     assert!(check_sample("gold, shared division", &gold, 1001) >= 1);
 }
