@@ -1286,3 +1286,32 @@ fn share_divisions_validates_its_domain() {
         );
     }
 }
+
+/// `SharedDivision` composes with the Newton policy: the one shared reciprocal is
+/// `fast::recip::<3>` of the product, and the result stays within the Newton policy's own
+/// bound (`NewtonSqrtRecip<3, 3>`: 9.5e-7 relative of the exact path) plus the sharing's.
+#[test]
+fn shared_division_with_the_newton_policy() {
+    use brdf::fast::NewtonSqrtRecip;
+    use brdf::real::{F32FmaSharedDiv, Splat};
+    for preset in ior::Preset::METALS {
+        let exact = Conductor::<f64, 3>::from_preset(preset).unwrap();
+        let fast = Conductor::<f32, 3>::from_preset(preset)
+            .unwrap()
+            .with_policy::<NewtonSqrtRecip<3, 3>>()
+            .share_divisions()
+            .unwrap()
+            .splat::<F32FmaSharedDiv>();
+        for j in 0..=400 {
+            let c = (f64::from(j) / 400.0).powi(2);
+            let (a, b) = (
+                fast.eval(F32FmaSharedDiv(c as f32)),
+                exact.eval(f64::from(c as f32)),
+            );
+            for i in 0..3 {
+                let rel = (f64::from(a[i].0) - b[i]).abs() / b[i];
+                assert!(rel <= 2e-6, "{preset:?} channel {i} at c {c}: {rel:e}");
+            }
+        }
+    }
+}
