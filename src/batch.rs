@@ -347,27 +347,6 @@ fn dispatch<P: Loop<N>, F: Loop<N>, const N: usize>(
     Ok(())
 }
 
-/// [`dispatch`] of the per-pair loop: the FMA kernels on `shared` (the [`F32FmaSharedDiv`]
-/// form) where [`shares_divisions`], else on `fused` (the [`F32Fma`] form).
-#[inline]
-fn dispatch_per_pair<B: BatchBrdf<N>, const N: usize>(
-    isa: Isa,
-    brdf: &B,
-    (fused, shared): (&B::Fused, &B::SharedDiv),
-    wi: Directions<'_>,
-    wo: Directions<'_>,
-    out: [&mut [f32]; N],
-) -> Result<(), Unavailable> {
-    let portable = PerPair::<f32, B>(brdf, PhantomData);
-    if shares_divisions() {
-        let shared = PerPair::<F32FmaSharedDiv, B::SharedDiv>(shared, PhantomData);
-        dispatch(isa, &portable, &shared, wi, wo, out)
-    } else {
-        let fused = PerPair::<F32Fma, B::Fused>(fused, PhantomData);
-        dispatch(isa, &portable, &fused, wi, wo, out)
-    }
-}
-
 /// Evaluates `brdf` for every pair `(wi[i], wo[i])` with a chosen instruction set, writing
 /// channel `c` of `f(wi[i], wo[i])` (sr⁻¹, without `cos θi`) to `out[c][i]`.
 ///
@@ -387,8 +366,17 @@ pub fn eval_with<B: BatchBrdf<N>, const N: usize>(
     wo: Directions<'_>,
     out: [&mut [f32]; N],
 ) -> Result<(), Unavailable> {
-    let forms = (&brdf.fused(), &brdf.shared_div());
-    dispatch_per_pair(isa, brdf, forms, wi, wo, out)
+    // Only the form the FMA kernels run is built.
+    let portable = PerPair::<f32, B>(brdf, PhantomData);
+    if shares_divisions() {
+        let shared = brdf.shared_div();
+        let shared = PerPair::<F32FmaSharedDiv, B::SharedDiv>(&shared, PhantomData);
+        dispatch(isa, &portable, &shared, wi, wo, out)
+    } else {
+        let fused = brdf.fused();
+        let fused = PerPair::<F32Fma, B::Fused>(&fused, PhantomData);
+        dispatch(isa, &portable, &fused, wi, wo, out)
+    }
 }
 
 /// Evaluates `brdf` for every pair `(wi[i], wo[i])` on the widest instruction set this CPU
@@ -562,14 +550,33 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
     wo: &[glam::Vec3],
     out: &mut [[f32; N]],
 ) {
-    const CHUNK: usize = 256;
     assert!(
         wi.len() == wo.len() && wo.len() == out.len(),
         "eval_glam: lengths differ"
     );
+    // The kernels' form once per call (only the one they run), not per chunk.
+    let portable = PerPair::<f32, B>(brdf, PhantomData);
+    if shares_divisions() {
+        let shared = brdf.shared_div();
+        let shared = PerPair::<F32FmaSharedDiv, B::SharedDiv>(&shared, PhantomData);
+        glam_chunks(&portable, &shared, wi, wo, out);
+    } else {
+        let fused = brdf.fused();
+        let fused = PerPair::<F32Fma, B::Fused>(&fused, PhantomData);
+        glam_chunks(&portable, &fused, wi, wo, out);
+    }
+}
+
+/// The chunked transposition of [`eval_glam`] around [`dispatch`].
+fn glam_chunks<P: Loop<N>, F: Loop<N>, const N: usize>(
+    portable: &P,
+    fma: &F,
+    wi: &[glam::Vec3],
+    wo: &[glam::Vec3],
+    out: &mut [[f32; N]],
+) {
+    const CHUNK: usize = 256;
     let isa = Isa::detect();
-    // The kernels' forms once per call, not per chunk.
-    let (fused, shared) = (brdf.fused(), brdf.shared_div());
     let mut soa = [[0.0f32; CHUNK]; 6];
     let mut res = [[0.0f32; CHUNK]; N];
     for ((wi, wo), out) in wi
@@ -591,7 +598,7 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
         let dirs_o = Directions::new(&ox[..n], &oy[..n], &oz[..n]);
         let slices = res.each_mut().map(|c| &mut c[..n]);
         // The detected variant is available by construction.
-        let _ = dispatch_per_pair(isa, brdf, (&fused, &shared), dirs_i, dirs_o, slices);
+        let _ = dispatch(isa, portable, fma, dirs_i, dirs_o, slices);
         for (i, o) in out.iter_mut().enumerate() {
             *o = core::array::from_fn(|c| res[c][i]);
         }
