@@ -1123,6 +1123,13 @@ pub fn dielectric_albedo_tables() -> (&'static [u16], &'static [f32]) {
 /// worst cells is 9.5e-4 (inside, `c = 2e-4`, `α = 1.9e-4`, `μ = 3.8e-4`, where the
 /// transmitted ray turns grazing). Near `η = 1` at grazing views: within 3.1e-4.
 ///
+/// Cost (`cargo bench --bench energy`, Intel Xeon, Sapphire Rapids class): 4.5 M lookups/s
+/// on `f32`, 7.1 M points/s on `f32x8` (the gathers are per lane) — about 1/8 of the
+/// bilinear conductor table's 37 / 88 M/s, and 18 000 times faster than one quadrature
+/// (3.9 ms). Fine for per-material or per-pixel set-up; a per-sample hot path that needs
+/// only `η > 1` at moderate roughness can precompute its own smaller table with
+/// [`dielectric_albedo`].
+///
 /// References: Walter et al. 2007; E. Catmull, R. Rom, "A class of local interpolating
 /// splines", 1974; the table serves Kulla & Conty 2017's dielectric compensation and
 /// Turquin 2019's energy scaling for glass.
