@@ -634,43 +634,41 @@ fn dielectric_table_lanes_match_scalars() {
     }
 }
 
+/// Points just below and just above `mu` at `eta` lie in regions `lower` and `upper`, and
+/// the lookup at roughness `alpha` is continuous across the boundary (within 1e-3).
+fn assert_regions_meet(
+    alpha: f64,
+    eta: f64,
+    (below, above): (f64, f64),
+    lower: dielectric_table::Region,
+    upper: dielectric_table::Region,
+) {
+    assert_eq!(dielectric_table::region_of(eta, below), lower);
+    assert_eq!(dielectric_table::region_of(eta, above), upper);
+    let jump = (dielectric_albedo_table(alpha, eta, below)
+        - dielectric_albedo_table(alpha, eta, above))
+    .abs();
+    assert!(
+        jump < 1e-3,
+        "α {alpha} η {eta}: jump {jump:e} between {lower:?} and {upper:?}"
+    );
+}
+
 /// The regions meet on the kink `sin θo = c`: the lookup is continuous across it (within the
 /// interpolation error) and the region of a point follows its definition.
 #[test]
 fn dielectric_table_regions_meet_on_the_kink() {
+    use dielectric_table::Region::{InsideGrazing, InsideNormal, InsideOblique};
     for (alpha, c) in [(0.05, 0.3), (0.5, 0.6), (1.0, 0.9)] {
         let eta = (1.0_f64 - c * c).sqrt();
         let mu_k = eta; // sin θo = c  ⇔  μ = √(1 − c²) = η
-        let below = mu_k * (1.0 - 1e-9);
-        let above = (mu_k * (1.0 + 1e-9)).min(1.0);
-        assert_eq!(
-            dielectric_table::region_of(eta, below),
-            dielectric_table::Region::InsideOblique
-        );
-        assert_eq!(
-            dielectric_table::region_of(eta, above),
-            dielectric_table::Region::InsideNormal
-        );
-        let jump = (dielectric_albedo_table(alpha, eta, below)
-            - dielectric_albedo_table(alpha, eta, above))
-        .abs();
-        assert!(jump < 1e-3, "α {alpha} c {c}: jump {jump:e}");
+        let edges = (mu_k * (1.0 - 1e-9), (mu_k * (1.0 + 1e-9)).min(1.0));
+        assert_regions_meet(alpha, eta, edges, InsideOblique, InsideNormal);
     }
     // The part below the kink is split at μ = 1/3, where its IOR range stops being c_max.
     for (alpha, eta) in [(0.002, 0.99), (0.3, 0.5), (1.0, 0.9)] {
-        let (below, above) = (1.0 / 3.0 - 1e-9, 1.0 / 3.0 + 1e-9);
-        assert_eq!(
-            dielectric_table::region_of(eta, below),
-            dielectric_table::Region::InsideGrazing
-        );
-        assert_eq!(
-            dielectric_table::region_of(eta, above),
-            dielectric_table::Region::InsideOblique
-        );
-        let jump = (dielectric_albedo_table(alpha, eta, below)
-            - dielectric_albedo_table(alpha, eta, above))
-        .abs();
-        assert!(jump < 1e-3, "α {alpha} η {eta}: jump {jump:e} at μ = 1/3");
+        let edges = (1.0 / 3.0 - 1e-9, 1.0 / 3.0 + 1e-9);
+        assert_regions_meet(alpha, eta, edges, InsideGrazing, InsideOblique);
     }
     assert_eq!(
         dielectric_table::region_of(1.5, 0.2),
