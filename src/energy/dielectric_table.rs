@@ -621,7 +621,10 @@ pub fn stored_residual(region: Region, s: usize, p: usize, r: usize) -> f64 {
 /// Quantizes a residual to the stored `u16` (round to nearest on `[T_LO, T_HI]`).
 #[must_use]
 pub fn quantize(t: f64) -> u16 {
-    let x = ((t - T_LO) / (T_HI - T_LO) * 65535.0).round();
+    let y = (t - T_LO) / (T_HI - T_LO) * 65535.0;
+    // Round half away from zero (`f64::round`, which needs `std`): `y − ⌊y⌋` is exact.
+    let f = Real::floor(y);
+    let x = if y - f >= 0.5 { f + 1.0 } else { f };
     assert!(
         (0.0..=65535.0).contains(&x),
         "residual {t} outside [{T_LO}, {T_HI}]"
@@ -630,7 +633,9 @@ pub fn quantize(t: f64) -> u16 {
 }
 
 /// The residuals `T` of the interior nodes of roughness plane `j` of `region` (first axis
-/// major, `n × m` values), computed now: [`residual`] at every node.
+/// major, `n × m` values), computed now: [`residual`] at every node. (Needs the `std`
+/// feature: it allocates.)
+#[cfg(feature = "std")]
 #[must_use]
 pub fn plane(region: Region, j: usize) -> Vec<f64> {
     let (n, m) = region.nodes();
@@ -645,7 +650,9 @@ pub fn plane(region: Region, j: usize) -> Vec<f64> {
 /// quantized by [`quantize`]; roughness major, then the first axis.
 ///
 /// # Panics
-/// If `planes` is not `ALPHA_NODES` planes of `n × m` values.
+/// If `planes` is not `ALPHA_NODES` planes of `n × m` values. (Needs the `std` feature: it
+/// allocates.)
+#[cfg(feature = "std")]
 #[must_use]
 pub fn block(region: Region, planes: &[Vec<f64>]) -> Vec<u16> {
     let (n, m) = region.nodes();
