@@ -547,12 +547,13 @@ pub fn albedo_tables(distribution: Distribution) -> (&'static [f32], &'static [f
     }
 }
 
-/// `table[k]` for each lane's index `k` (a gather; one load per lane).
+/// `table[k]` for each lane's index `k` (a gather; one load per lane), for the `f32` tables
+/// and the `u16` residuals of the dielectric table alike.
 #[inline(always)]
-fn gather<R: Real>(table: &[f32], k: R) -> R {
+fn gather<T: Copy + Into<f64>, R: Real>(table: &[T], k: R) -> R {
     R::from_fn(|l| {
         let k: f64 = k.lane(l).into();
-        <R::Scalar as crate::Scalar>::of(f64::from(table[k as usize]))
+        <R::Scalar as crate::Scalar>::of(table[k as usize].into())
     })
 }
 

@@ -10,7 +10,7 @@
 //! [`normal_axes`]) and their inverses ([`alpha_node`], [`inverse`], [`node_point`]), and the
 //! stored values ([`residual`], [`plane`], [`block`], [`quantize`]).
 
-use super::{ALPHA_MIN, dielectric_albedo, dielectric_tables};
+use super::{ALPHA_MIN, dielectric_albedo, dielectric_tables, gather};
 use crate::{Real, fast};
 
 /// The clamp of the quadrature: [`dielectric_albedo`] evaluates `cos θo` as `max(μ, 1e-6)`,
@@ -672,15 +672,6 @@ pub fn block(region: Region, planes: &[Vec<f64>]) -> Vec<u16> {
     out
 }
 
-/// `table[k]` of a `u16` table for each lane's index `k`.
-#[inline(always)]
-fn gather_u16<R: Real>(table: &[u16], k: R) -> R {
-    R::from_fn(|l| {
-        let k: f64 = k.lane(l).into();
-        <R::Scalar as crate::Scalar>::of(f64::from(table[k as usize]))
-    })
-}
-
 /// Catmull-Rom weights of the offsets `−1, 0, 1, 2` at `x ∈ [0, 1]`.
 #[inline(always)]
 pub(super) fn catmull_rom<R: Real>(x: R) -> [R; 4] {
@@ -761,7 +752,7 @@ pub fn lookup_with<R: Real>(table: &[u16], alpha: R, eta: R, cos_theta_o: R) -> 
             let mut inner = R::zero();
             for (r, &w_b) in wb.iter().enumerate() {
                 let idx = k + R::from_f64(p as f64) * row + R::from_f64(r as f64);
-                inner += w_b * gather_u16(table, idx);
+                inner += w_b * gather(table, idx);
             }
             sum += w_a * inner;
         }
