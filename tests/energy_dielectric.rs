@@ -465,9 +465,9 @@ fn cell_point(
 }
 
 /// The near-`η = 1` grazing corner (where the former table was 0.25 off) and a deterministic
-/// sample of cells of every region: within 1e-3. The corner points: `η = 1`, `1 ± 1e-6 … 1e-2`
-/// and the former worst `η = 1.067`, `μ` from 0 (below the quadrature's clamp) to 0.05, four
-/// roughnesses from `1e-4` to 1.
+/// sample of cells of every region (at the full sweep's points, [`sweep_point`]): within
+/// 1e-3. The corner points: `η = 1`, `1 ± 1e-6 … 1e-2` and the former worst `η = 1.067`, `μ`
+/// from 0 (below the quadrature's clamp) to 0.05, four roughnesses from `1e-4` to 1.
 #[test]
 fn dielectric_table_interpolates_within_1e3_on_a_subset() {
     let mut points = Vec::new();
@@ -492,10 +492,7 @@ fn dielectric_table_interpolates_within_1e3_on_a_subset() {
     }
     points.push((0.12, 1.067, 2.8e-5));
     let corner = worst_over(points);
-    eprintln!(
-        "dielectric table, η ≈ 1 at grazing: worst {:.3e} at α {} η {} μ {} ({} points)",
-        corner.0, corner.1, corner.2, corner.3, corner.4
-    );
+    report("η ≈ 1 at grazing", corner);
     let mut cells = Vec::new();
     for region in dielectric_table::Region::ALL {
         let (n, m) = region.nodes();
@@ -508,25 +505,14 @@ fn dielectric_table_interpolates_within_1e3_on_a_subset() {
                 (n - 2, m - 2),
                 (n - 2, 0),
             ] {
-                cells.push(cell_point(region, j, i, k, [0.5, 0.5, 0.5]));
+                cells.push(sweep_point(region, j, i, k));
             }
         }
     }
     let sample = worst_over(cells);
-    eprintln!(
-        "dielectric table, cell centres: worst {:.3e} at α {} η {} μ {} ({} points)",
-        sample.0, sample.1, sample.2, sample.3, sample.4
-    );
-    for w in [corner, sample] {
-        assert!(
-            w.0 < 1e-3,
-            "worst {:e} at α {} η {} μ {}",
-            w.0,
-            w.1,
-            w.2,
-            w.3
-        );
-    }
+    report("sampled cells", sample);
+    assert_within_1e3(corner);
+    assert_within_1e3(sample);
 }
 
 /// SplitMix64 of an integer: the fixed pseudo-random offsets of the full sweep.
@@ -537,8 +523,40 @@ fn hash01(x: u64) -> f64 {
     ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
 }
 
-/// Every cell of every region and roughness, one point per cell at a fixed pseudo-random
-/// position inside it (centres alone miss the peaks of the Catmull-Rom error), within 1e-3;
+/// The point of cell `(j, i, k)` of `region` that the sweeps test: a fixed pseudo-random
+/// position inside the cell (centres alone miss the peaks of the Catmull-Rom error).
+fn sweep_point(region: dielectric_table::Region, j: usize, i: usize, k: usize) -> (f64, f64, f64) {
+    let id = (((region as u64 * 64 + j as u64) * 128 + i as u64) * 64 + k as u64) * 3;
+    cell_point(
+        region,
+        j,
+        i,
+        k,
+        [hash01(id), hash01(id + 1), hash01(id + 2)],
+    )
+}
+
+/// Prints the worst point `w` of [`worst_over`] under `label`.
+fn report(label: &str, w: (f64, f64, f64, f64, usize)) {
+    eprintln!(
+        "dielectric table, {label}: worst {:.3e} at α {} η {} μ {} ({} points)",
+        w.0, w.1, w.2, w.3, w.4
+    );
+}
+
+/// Asserts the worst point `w` of [`worst_over`] is within 1e-3.
+fn assert_within_1e3(w: (f64, f64, f64, f64, usize)) {
+    assert!(
+        w.0 < 1e-3,
+        "worst {:e} at α {} η {} μ {}",
+        w.0,
+        w.1,
+        w.2,
+        w.3
+    );
+}
+
+/// Every cell of every region and roughness, one point per cell ([`sweep_point`]), within 1e-3;
 /// the worst per region is printed.
 #[test]
 #[ignore = "full sweep, one quadrature per cell (about 10 min in release); run with --ignored"]
@@ -550,30 +568,17 @@ fn dielectric_table_interpolates_within_1e3_everywhere() {
         for j in 0..dielectric_table::ALPHA_NODES - 1 {
             for i in 0..n - 1 {
                 for k in 0..m - 1 {
-                    let id =
-                        (((region as u64 * 64 + j as u64) * 128 + i as u64) * 64 + k as u64) * 3;
-                    let f = [hash01(id), hash01(id + 1), hash01(id + 2)];
-                    points.push(cell_point(region, j, i, k, f));
+                    points.push(sweep_point(region, j, i, k));
                 }
             }
         }
         let w = worst_over(points);
-        eprintln!(
-            "dielectric table {region:?}: worst {:.3e} at α {} η {} μ {} ({} points)",
-            w.0, w.1, w.2, w.3, w.4
-        );
+        report(&format!("{region:?}"), w);
         if w.0 > worst_all.0 {
             worst_all = w;
         }
     }
-    assert!(
-        worst_all.0 < 1e-3,
-        "worst {:e} at α {} η {} μ {}",
-        worst_all.0,
-        worst_all.1,
-        worst_all.2,
-        worst_all.3
-    );
+    assert_within_1e3(worst_all);
 }
 
 /// `E_avg` from the table against the direct average within 1e-3: near `η = 1` (where the
