@@ -20,7 +20,7 @@
 use std::hint::black_box;
 
 use brdf::batch::{self, Directions, Isa, Pipelined};
-use brdf::fast::NewtonSqrtRecip;
+use brdf::fast::{HardwareEstimate, NewtonSqrtRecip};
 use brdf::fresnel::{Conductor, Schlick};
 use brdf::masking::{SmithHeightCorrelated, SmithSeparable};
 use brdf::models::CookTorrance;
@@ -294,6 +294,18 @@ fn bench_ggx_schlick(c: &mut Criterion) {
         &wo,
         &mut out1,
     );
+    // The half vector and the final division by the hardware estimates + one refinement
+    // step: explicit 16-lane registers on Avx512, the exact path elsewhere (issue 14).
+    let estimate = ct.with_sqrt::<HardwareEstimate>();
+    bench_isas(
+        &mut g,
+        "batch_hardware_estimate",
+        batch::eval_with,
+        &estimate,
+        &wi,
+        &wo,
+        &mut out1,
+    );
     // The anisotropy-capable `Ggx` type with αx = αy: the price of not specializing.
     let aniso = CookTorrance::new(
         Ggx::<f32>::new(0.3).unwrap(),
@@ -326,6 +338,7 @@ impl<R: Real, B: Brdf<R, 3>> Brdf<R, 3> for TimesCos<B> {
 }
 impl<B: Splat> Splat for TimesCos<B> {
     type On<L: Real> = TimesCos<B::On<L>>;
+    const HARDWARE_ESTIMATES: bool = B::HARDWARE_ESTIMATES;
     fn splat<L: Real>(&self) -> Self::On<L> {
         TimesCos(self.0.splat())
     }
@@ -382,6 +395,24 @@ fn bench_rough_conductor(c: &mut Criterion) {
         "batch_newton_sqrt_recip_3_3",
         batch::eval_with,
         &fast,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    // The same by the hardware estimates (explicit 16-lane registers on Avx512).
+    let estimate = TimesCos(
+        CookTorrance::new(
+            m.0.ndf,
+            m.0.fresnel.with_policy::<HardwareEstimate>(),
+            SmithSeparable,
+        )
+        .with_sqrt::<HardwareEstimate>(),
+    );
+    bench_isas(
+        &mut g,
+        "batch_hardware_estimate",
+        batch::eval_with,
+        &estimate,
         &wi,
         &wo,
         &mut out,

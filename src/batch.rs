@@ -36,6 +36,8 @@
 
 use core::marker::PhantomData;
 
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+use crate::real::zmm::Zmm;
 use crate::real::{F32Fma, F32FmaSharedDiv, Splat};
 use crate::sampling::SampleBrdf;
 use crate::{Real, Vec3, models::Brdf};
@@ -165,7 +167,11 @@ impl core::error::Error for Unavailable {}
 /// Implemented for every `B: Brdf<f32, N> + Splat` whose [`F32Fma`] and [`F32FmaSharedDiv`]
 /// forms are models on those types — every model of this crate, and a model of your own
 /// once it is generic over [`Real`] and implements [`Splat`] (see its example).
-pub trait BatchBrdf<const N: usize>: Brdf<f32, N> {
+pub trait BatchBrdf<const N: usize>: Brdf<f32, N> + wide_form::WideForm<N> {
+    /// Whether the model asks for [`crate::fast::HardwareEstimate`]
+    /// ([`Splat::HARDWARE_ESTIMATES`]): [`Isa::Avx512`] then runs it on explicit 16-lane
+    /// registers.
+    const HARDWARE_ESTIMATES: bool;
     /// The same model on [`F32Fma`].
     type Fused: Brdf<F32Fma, N>;
     /// The same model on [`F32FmaSharedDiv`].
@@ -182,7 +188,9 @@ where
     B: Brdf<f32, N> + Splat,
     B::On<F32Fma>: Brdf<F32Fma, N>,
     B::On<F32FmaSharedDiv>: Brdf<F32FmaSharedDiv, N>,
+    B: wide_form::WideForm<N>,
 {
+    const HARDWARE_ESTIMATES: bool = B::HARDWARE_ESTIMATES;
     type Fused = B::On<F32Fma>;
     type SharedDiv = B::On<F32FmaSharedDiv>;
     #[inline]
@@ -193,6 +201,41 @@ where
     fn shared_div(&self) -> Self::SharedDiv {
         self.splat()
     }
+}
+
+/// The model on the explicit AVX-512 lanes (crate-private: that number type may exist only
+/// inside the AVX-512 kernel). Every `Splat` model whose form on any [`Real`] is a model
+/// has it.
+mod wide_form {
+    use crate::real::Splat;
+
+    /// See the module docs.
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    pub trait WideForm<const N: usize> {
+        /// The same model on [`crate::real::zmm::Zmm`].
+        type Wide: crate::Brdf<crate::real::zmm::Zmm, N>;
+        /// It, constants keeping their bits.
+        fn wide(&self) -> Self::Wide;
+    }
+
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    impl<B: Splat, const N: usize> WideForm<N> for B
+    where
+        B::On<crate::real::zmm::Zmm>: crate::Brdf<crate::real::zmm::Zmm, N>,
+    {
+        type Wide = B::On<crate::real::zmm::Zmm>;
+        #[inline]
+        fn wide(&self) -> Self::Wide {
+            self.splat()
+        }
+    }
+
+    /// See the module docs (no explicit lanes on this target).
+    #[cfg(not(all(feature = "std", target_arch = "x86_64")))]
+    pub trait WideForm<const N: usize> {}
+
+    #[cfg(not(all(feature = "std", target_arch = "x86_64")))]
+    impl<B: Splat, const N: usize> WideForm<N> for B {}
 }
 
 /// Whether the FMA kernels ([`Isa::Avx2Fma`], [`Isa::Avx512`]) of [`eval_with`], [`eval`],
@@ -294,6 +337,53 @@ where
     }
 }
 
+/// Sixteen evaluations per iteration of `model` on explicit AVX-512 registers ([`Zmm`]),
+/// the last `n mod 16` under a lane mask: the loop of models with
+/// [`crate::fast::HardwareEstimate`]. The model comes by value, so its constants are locals
+/// that the optimizer keeps in registers across the loop.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
+fn kernel_avx512_lanes16<B: Brdf<Zmm, N>, const N: usize>(
+    model: B,
+    wi: Directions<'_>,
+    wo: Directions<'_>,
+    out: [&mut [f32]; N],
+) {
+    use crate::real::zmm::{ZmmMask, first_lanes, load, store};
+    let n = checked_len(&wi, &wo, &out);
+    #[inline(always)]
+    fn block<B: Brdf<Zmm, N>, const N: usize>(
+        model: &B,
+        wi: &Directions<'_>,
+        wo: &Directions<'_>,
+        out: &mut [&mut [f32]; N],
+        i: usize,
+        m: ZmmMask,
+    ) {
+        // SAFETY: called only from `kernel_avx512_lanes16` (AVX-512F checked by the
+        // dispatcher), and the mask keeps lanes `i + j < n`, within every slice.
+        unsafe {
+            let f = model.eval(
+                Vec3::new(load(wi.x, i, m), load(wi.y, i, m), load(wi.z, i, m)),
+                Vec3::new(load(wo.x, i, m), load(wo.y, i, m), load(wo.z, i, m)),
+            );
+            for c in 0..N {
+                store(out[c], i, m, f[c]);
+            }
+        }
+    }
+    let mut out = out;
+    let full = n - n % 16;
+    let mut i = 0;
+    while i < full {
+        block(&model, &wi, &wo, &mut out, i, first_lanes(16));
+        i += 16;
+    }
+    if full < n {
+        block(&model, &wi, &wo, &mut out, full, first_lanes(n - full));
+    }
+}
+
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
 #[target_feature(enable = "avx2,fma")]
 fn kernel_avx2<L: Loop<N>, const N: usize>(
@@ -368,6 +458,13 @@ pub fn eval_with<B: BatchBrdf<N>, const N: usize>(
 ) -> Result<(), Unavailable> {
     // Only the form the FMA kernels run is built.
     let portable = PerPair::<f32, B>(brdf, PhantomData);
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    if B::HARDWARE_ESTIMATES && isa == Isa::Avx512 && isa.is_available() {
+        let wide = brdf.wide();
+        // SAFETY: `is_available` checked at run time that the CPU has these features.
+        unsafe { kernel_avx512_lanes16(wide, wi, wo, out) };
+        return Ok(());
+    }
     if shares_divisions() {
         let shared = brdf.shared_div();
         let shared = PerPair::<F32FmaSharedDiv, B::SharedDiv>(&shared, PhantomData);

@@ -761,6 +761,11 @@ pub fn sin_cos_2pi<R: Real>(u: R) -> (R, R) {
 ///   [`Bits::rsqrt_estimate`] refined by `STEPS` Newton steps, and `√x = x · rsqrt(x)`:
 ///   multiplies and adds only, no square root or division (relative error in the module docs;
 ///   both results carry it).
+/// * [`NewtonSqrtRecip`]`<SQRT, RECIP>`: as [`NewtonSqrt`], and the model's final division
+///   by [`recip`].
+/// * [`HardwareEstimate`]: the exact operations, except in the [`crate::batch`] AVX-512
+///   kernel, where the hardware estimates `vrsqrt14ps`/`vrcp14ps` with one refinement step
+///   take them (a few ULP).
 ///
 /// The trade measured on this crate's models (error and speed against [`ExactSqrt`]) is in
 /// `docs/tradeoffs.md`: on an x86 core with a fast square-root unit (Zen 5 here) the exact
@@ -777,6 +782,11 @@ pub trait SqrtFn: Copy + core::fmt::Debug + Default + Send + Sync + 'static {
     fn div<R: Real>(n: R, d: R) -> R {
         n / d
     }
+
+    /// Whether the policy wants the hardware estimates of the batch path's explicit
+    /// AVX-512 lanes ([`HardwareEstimate`]); a model reports it through
+    /// [`crate::real::Splat::HARDWARE_ESTIMATES`].
+    const HARDWARE_ESTIMATES: bool = false;
 }
 
 /// [`SqrtFn`] through the correctly rounded [`Real::sqrt`] and a division.
@@ -875,4 +885,50 @@ impl<const SQRT: usize, const RECIP: usize> SqrtFn for NewtonSqrtRecip<SQRT, REC
     fn div<R: Real>(n: R, d: R) -> R {
         n * recip::<RECIP, R>(d)
     }
+}
+
+/// [`SqrtFn`] through the hardware estimates with one refinement step where the batch path
+/// can use them, and exact elsewhere: [`Bits::sqrt_rsqrt_refined`] and
+/// [`Bits::div_refined`].
+///
+/// * [`crate::batch`] on [`crate::batch::Isa::Avx512`]: a model with this policy runs on
+///   explicit 16-lane AVX-512 registers, where `√x` is `vrsqrt14ps` + one Newton step and
+///   `n / d` is `vrcp14ps` + one Markstein correction: multiplies and adds on the FMA ports
+///   instead of the square-root/division unit, which bounds GGX on Intel cores (README,
+///   Performance). Results within a few ULP of [`ExactSqrt`] (`tests/batch.rs` states the
+///   bound), and not bit-identical to `eval`.
+/// * Everywhere else (`eval` on any type, the portable and AVX2 kernels): exactly
+///   [`ExactSqrt`], bit for bit — those have no vectorizable estimate instruction, and three
+///   Newton steps from a bit trick ([`NewtonSqrtRecip`]) cost more than the exact
+///   operations.
+///
+/// Domain as [`SqrtFn`]: positive normal `x` (and `√0 = 0`) and a positive normal final
+/// denominator `d` (the models clamp it to `≥ 10⁻³⁰`).
+///
+/// ```
+/// use brdf::{Brdf, Vec3, fast::HardwareEstimate, fresnel::Schlick};
+/// use brdf::{masking::SmithHeightCorrelated, models::CookTorrance, ndf::GgxIsotropic};
+/// let exact = CookTorrance::new(
+///     GgxIsotropic::new(0.3_f32).unwrap(),
+///     Schlick::new([0.04_f32]).unwrap(),
+///     SmithHeightCorrelated,
+/// );
+/// let fast = exact.with_sqrt::<HardwareEstimate>();
+/// let (wi, wo) = (Vec3::new(0.6, 0.0, 0.8), Vec3::new(-0.28, 0.0, 0.96));
+/// // Scalar `eval` is the exact policy bit for bit; the estimates act in batch::eval.
+/// assert_eq!(exact.eval(wi, wo), fast.eval(wi, wo));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct HardwareEstimate;
+
+impl SqrtFn for HardwareEstimate {
+    #[inline(always)]
+    fn sqrt_rsqrt<R: Real>(x: R) -> (R, R) {
+        x.sqrt_rsqrt_refined()
+    }
+    #[inline(always)]
+    fn div<R: Real>(n: R, d: R) -> R {
+        n.div_refined(d)
+    }
+    const HARDWARE_ESTIMATES: bool = true;
 }

@@ -116,8 +116,10 @@ pub trait Masking<R: Real, D: Ndf<R>> {
 
     /// The visibility as a fraction `(numerator, denominator)`, so that a Cook-Torrance body
     /// divides once for `D·V` (see [`crate::ndf::Ndf::d_fraction`]). The default is
-    /// `(visibility(..), 1)`; the Smith terms override it with `(1, 4·den)` and never read
-    /// `wm` (so a body that passes them an unnormalized half vector loses nothing).
+    /// `(visibility(..), 1)`; the Smith terms override it with `(1, den)` and never read
+    /// `wm` (so a body that passes them an unnormalized half vector loses nothing). The
+    /// denominator is `≥ 0` and may be `0` (both directions exactly grazing): the caller
+    /// floors the product of the denominators it divides by (Cook-Torrance: at `1e-30`).
     ///
     /// Domain: unit `wi`, `wo` with `wi.z > 0`, `wo.z > 0` and `wm ∥ wi + wo` — the
     /// reflection configuration. There `wi·wm = wo·wm = |wi + wo|/2 > 0` (the directions
@@ -181,16 +183,21 @@ impl<R: Real, D: SmithLambda<R>> Masking<R, D> for SmithHeightCorrelated {
         R::select(front(wi, wo, wm), g, R::zero())
     }
 
+    /// `1/(2·sum)` ([`SmithLambda::height_correlated_sum`]), the sum floored at `1e-30`
+    /// (finite at exactly grazing angles), and 0 below the horizon or behind the microfacet.
     #[inline(always)]
     fn visibility(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
         let (_, den) = self.visibility_fraction(ndf, wi, wo, wm);
-        R::select(front(wi, wo, wm), den.recip(), R::zero())
+        let m = front(wi, wo, wm) & wi.z.ge(R::zero()) & wo.z.ge(R::zero());
+        R::select(m, den.max(tiny()).recip(), R::zero())
     }
 
+    /// `(1, 2·sum)`: the denominator is not floored (0 when both directions are exactly
+    /// grazing); the Cook-Torrance body floors the product of its denominators.
     #[inline(always)]
     fn visibility_fraction(&self, ndf: &D, wi: Vec3<R>, wo: Vec3<R>, _wm: Vec3<R>) -> (R, R) {
-        let den = (R::from_f64(4.0) * ndf.height_correlated_den(wi, wo)).max(tiny());
-        (R::one(), den)
+        let sum = ndf.height_correlated_sum(wi, wo);
+        (R::one(), sum + sum)
     }
 }
 

@@ -98,7 +98,9 @@ pub trait Ndf<R: Real> {
     /// that can be written on `h` directly spares the normalization of the half vector: after
     /// inlining, whatever an implementation does not use is never computed. The default is
     /// `(d(wm), 1)`; [`Ggx`] overrides it with `(norm·len2², (x²/αx² + y²/αy² + z²)²)` on `h`,
-    /// which is `D(h/|h|)` exactly and needs neither a square root nor a division.
+    /// which is `D(h/|h|)` exactly and needs neither a square root nor a division. The
+    /// denominator is `≥ 0`, and may be `0` (at `h = 0`): a caller clamps the product of
+    /// the denominators it divides by.
     #[inline(always)]
     fn d_fraction(&self, wm: Vec3<R>, h: Vec3<R>, len2: R) -> (R, R) {
         let _ = (h, len2);
@@ -133,21 +135,26 @@ pub trait SmithLambda<R: Real>: Ndf<R> {
         (R::one() + self.lambda(w)).recip()
     }
 
-    /// `cos θi cos θo (1 + Λ(wi) + Λ(wo))`, the denominator of the height-correlated
-    /// visibility `V = 1/(4·den)`, for `wi`, `wo` in the upper hemisphere (cosines clamped at 0).
+    /// `2 cos θi cos θo (1 + Λ(wi) + Λ(wo))`, the denominator of the height-correlated
+    /// visibility `V = 1/(2·sum)` (Filament's `λV + λL`), for `wi`, `wo` in the upper
+    /// hemisphere; below it the value is unspecified (the callers mask by the horizon).
     ///
     /// ```text
-    /// den = cos θi cos θo + cos θo·cosΛ(wi) + cos θi·cosΛ(wo)
+    /// sum = 2 (cos θi cos θo + cos θo·cosΛ(wi) + cos θi·cosΛ(wo))
     /// ```
     ///
-    /// The default body is that sum; [`Ggx`] overrides it with the algebraically equal
-    /// `(cos θo √(cos²θi + sᵢ) + cos θi √(cos²θo + sₒ))/2`, `s = x²αx² + y²αy²`, which needs no
-    /// division (the `cos θ·cos θ` terms cancel exactly) — two square roots instead of two
-    /// square roots and two divisions on the hottest path of a GGX Cook-Torrance.
+    /// The default body is that sum (cosines clamped at 0); [`Ggx`] overrides it with the
+    /// algebraically equal `cos θo √(cos²θi + sᵢ) + cos θi √(cos²θo + sₒ)`,
+    /// `s = x²αx² + y²αy²`, which needs no division (the `cos θ·cos θ` terms cancel exactly)
+    /// — two square roots instead of two square roots and two divisions on the hottest path
+    /// of a GGX Cook-Torrance. (It replaces `height_correlated_den`, half of this sum with
+    /// the cosines clamped: the factor ½ and the clamps cost three operations per evaluation
+    /// on that path.)
     #[inline(always)]
-    fn height_correlated_den(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
+    fn height_correlated_sum(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
         let (ci, co) = (wi.z.max(R::zero()), wo.z.max(R::zero()));
-        ci * co + co * self.cos_lambda(wi) + ci * self.cos_lambda(wo)
+        let den = ci * co + co * self.cos_lambda(wi) + ci * self.cos_lambda(wo);
+        den + den
     }
 
     /// `cos θ (1 + Λ(w)) = cos θ / G1(w)` for `w` in the upper hemisphere (cosine clamped at
@@ -365,12 +372,12 @@ impl<R: Real> SmithLambda<R> for Ggx<R> {
         ggx_cos_lambda(self.alphas.stretched_sin2(w), w.z.abs())
     }
 
-    /// `(cos θo √(cos²θi + sᵢ) + cos θi √(cos²θo + sₒ))/2`: see
-    /// [`SmithLambda::height_correlated_den`] and `ggx_height_correlated_den`. Unit `wi`,
+    /// `cos θo √(cos²θi + sᵢ) + cos θi √(cos²θo + sₒ)`: see
+    /// [`SmithLambda::height_correlated_sum`] and `ggx_height_correlated_sum`. Unit `wi`,
     /// `wo`.
     #[inline(always)]
-    fn height_correlated_den(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
-        ggx_height_correlated_den(wi.z, wo.z, self.root2(wi), self.root2(wo))
+    fn height_correlated_sum(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
+        ggx_height_correlated_sum(wi.z, wo.z, self.root2(wi), self.root2(wo))
     }
 
     /// `(cos θ + √(cos²θ + s))/2`: see [`SmithLambda::separable_den`] and
@@ -423,12 +430,13 @@ fn ggx_d<R: Real>(norm: R, q: R, z: R) -> R {
 /// ```
 ///
 /// exact because the denominator is homogeneous of degree 2 in `h`: no square root, no
-/// division ([`Ndf::d_fraction`]).
+/// division ([`Ndf::d_fraction`]). The denominator is `0` only at `h = 0` (or when `den²`
+/// underflows); the caller clamps the product of its denominators (Cook-Torrance: at 1e-30).
 #[inline(always)]
 fn ggx_d_fraction<R: Real>(norm: R, q_h: R, h_z: R, len2: R) -> (R, R) {
-    let den = q_h + h_z * h_z;
+    let den = h_z.mul_add(h_z, q_h);
     let num = R::select(h_z.gt(R::zero()), norm * len2 * len2, R::zero());
-    (num, (den * den).max(tiny()))
+    (num, den * den)
 }
 
 /// GGX Smith `Λ` from `s = x² αx² + y² αy² = (α(w) sin θ)²` and `z = cos θ`:
@@ -457,20 +465,20 @@ fn ggx_cos_lambda<R: Real>(s: R, c: R) -> R {
     s / (R::from_f64(2.0) * ((c * c + s).sqrt() + c)).max(tiny())
 }
 
-/// The height-correlated visibility denominator of GGX, from the cosines and the radicands
+/// The height-correlated visibility sum of GGX, from the cosines and the radicands
 /// `rᵢ = cos²θi + sᵢ`, `rₒ = cos²θo + sₒ` (`s = (α(w) sin θ)²`):
 ///
 /// ```text
-/// cos θi cos θo (1 + Λ(wi) + Λ(wo)) = (cos θo √rᵢ + cos θi √rₒ) / 2
+/// 2 cos θi cos θo (1 + Λ(wi) + Λ(wo)) = cos θo √rᵢ + cos θi √rₒ
 /// ```
 ///
 /// (the `cos θi cos θo` terms cancel exactly, so there is no division; the form of
-/// Filament's docs for Heitz 2014's height-correlated G2). Cosines clamped at 0.
+/// Filament's docs for Heitz 2014's height-correlated G2). Upper hemisphere only: the
+/// cosines are not clamped (the callers mask by the horizon).
 #[inline(always)]
-fn ggx_height_correlated_den<R: Real>(cos_i: R, cos_o: R, root2_i: R, root2_o: R) -> R {
-    let (ci, co) = (cos_i.max(R::zero()), cos_o.max(R::zero()));
+fn ggx_height_correlated_sum<R: Real>(cos_i: R, cos_o: R, root2_i: R, root2_o: R) -> R {
     let (root_i, root_o) = (root2_i.sqrt(), root2_o.sqrt());
-    (co * root_i + ci * root_o) * R::from_f64(0.5)
+    cos_o.mul_add(root_i, cos_i * root_o)
 }
 
 /// The separable visibility factor of GGX from `cos θ` and the radicand `r = cos²θ + s`:
@@ -574,6 +582,7 @@ impl<R: Real> GgxIsotropic<R> {
     /// `(x² + y²)/α²` of a (possibly unnormalized) `v`.
     #[inline(always)]
     fn slope2_cos2(&self, v: Vec3<R>) -> R {
+        // x² + y² as `Vec3::length_squared` forms it, so the two share the work.
         (v.x * v.x + v.y * v.y) * self.inv_alpha2
     }
 
@@ -617,10 +626,10 @@ impl<R: Real> SmithLambda<R> for GgxIsotropic<R> {
         ggx_cos_lambda(self.stretched_sin2(w), w.z.abs())
     }
 
-    /// `ggx_height_correlated_den` on the radicands `α² + (1 − α²) cos²θ`.
+    /// `ggx_height_correlated_sum` on the radicands `α² + (1 − α²) cos²θ`.
     #[inline(always)]
-    fn height_correlated_den(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
-        ggx_height_correlated_den(wi.z, wo.z, self.root2(wi), self.root2(wo))
+    fn height_correlated_sum(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
+        ggx_height_correlated_sum(wi.z, wo.z, self.root2(wi), self.root2(wo))
     }
 
     /// `ggx_separable_den` on the radicand `α² + (1 − α²) cos²θ`.
@@ -846,13 +855,13 @@ impl<R: Real> Alphas<R> {
     /// `x²/αx² + y²/αy²` of a (possibly unnormalized) `v`.
     #[inline(always)]
     fn slope2_cos2(&self, v: Vec3<R>) -> R {
-        v.x * v.x * self.inv_alpha_x2 + v.y * v.y * self.inv_alpha_y2
+        (v.x * v.x).mul_add(self.inv_alpha_x2, v.y * v.y * self.inv_alpha_y2)
     }
 
     /// `x² αx² + y² αy²` = `(α(w) sin θ)²` of a unit `w`.
     #[inline(always)]
     fn stretched_sin2(&self, w: Vec3<R>) -> R {
-        w.x * w.x * self.alpha_x2 + w.y * w.y * self.alpha_y2
+        (w.x * w.x).mul_add(self.alpha_x2, w.y * w.y * self.alpha_y2)
     }
 }
 
@@ -1291,7 +1300,7 @@ pub fn beckmann_alpha_to_ggx_alpha<R: Real>(alpha: R) -> R {
 /// ([`crate::material::Material`]).
 ///
 /// It implements [`Ndf`], [`SmithLambda`] and [`ProjectedAlpha`] by forwarding **every**
-/// method — the optimised forms ([`Ndf::d_fraction`], [`SmithLambda::height_correlated_den`],
+/// method — the optimised forms ([`Ndf::d_fraction`], [`SmithLambda::height_correlated_sum`],
 /// …) included — to the wrapped distribution, so a model built on `AnyNdf` evaluates exactly
 /// the operations, hence the bits, of the same model built on the wrapped type
 /// (`tests/material.rs` checks every method and every model). The price is one branch per
@@ -1372,8 +1381,8 @@ impl<R: Real> SmithLambda<R> for AnyNdf<R> {
     }
 
     #[inline(always)]
-    fn height_correlated_den(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
-        on_any_ndf!(self, n => n.height_correlated_den(wi, wo))
+    fn height_correlated_sum(&self, wi: Vec3<R>, wo: Vec3<R>) -> R {
+        on_any_ndf!(self, n => n.height_correlated_sum(wi, wo))
     }
 
     #[inline(always)]

@@ -53,6 +53,9 @@ use wide::bytemuck::cast;
 pub use wide::{f32x4, f32x8, f32x16, f64x4};
 use wide::{u32x4, u32x8, u32x16, u64x4};
 
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+pub(crate) mod zmm;
+
 /// A number or a SIMD register of numbers on which every formula of the crate runs.
 ///
 /// Implemented for `f32`, `f64`, [`F32Fma`], [`F32FmaSharedDiv`], [`f32x4`], [`f32x8`],
@@ -271,6 +274,35 @@ pub trait Bits: Sized + sealed::Sealed {
     /// unspecified.
     fn rsqrt_estimate(self) -> Self;
 
+    /// `(√x, 1/√x)` for positive normal `x`, the square root of
+    /// [`crate::fast::HardwareEstimate`]: on the batch path's explicit AVX-512 lanes the
+    /// hardware estimate `vrsqrt14ps` (relative error ≤ 2⁻¹⁴) refined by one Newton step,
+    ///
+    /// ```text
+    /// y = rsqrt14(max(x, MIN_POSITIVE)),  s = x·y,  r = x − s² (one FMA),
+    /// √x ≈ s + r·y/2,  1/√x ≈ y + (y/2)(1 − s·y)
+    /// ```
+    ///
+    /// (error `O(2⁻²⁸)` before the last roundings: a few ULP, bounded in `tests/batch.rs`).
+    /// `x = 0` gives `√x = 0` and a large finite `1/√x`, as [`crate::fast::rsqrt`];
+    /// subnormal `x`, `∞` and NaN are outside the domain (inaccurate, NaN and NaN). On every other type, which has no
+    /// vectorizable estimate instruction, the correctly rounded `(√x, 1/√x)`.
+    fn sqrt_rsqrt_refined(self) -> (Self, Self);
+
+    /// `self / d`, the division of [`crate::fast::HardwareEstimate`]: on the batch path's
+    /// explicit AVX-512 lanes the hardware estimate `r = rcp14(d)` (relative error ≤ 2⁻¹⁴)
+    /// and one correction (P. Markstein, "IA-64 and Elementary Functions", Prentice Hall
+    /// 2000, §8),
+    ///
+    /// ```text
+    /// q = n·r,   n/d ≈ q + (n − q·d)·r      (the remainder by one FMA)
+    /// ```
+    ///
+    /// for normal finite nonzero `d` and a normal quotient (`d = 0` or `∞` give NaN there);
+    /// within a few ULP of `n/d`, bounded in `tests/batch.rs`. On every other type, the
+    /// correctly rounded `n / d`.
+    fn div_refined(self, d: Self) -> Self;
+
     /// Whether formulas that divide once per channel should share one division (computing
     /// the reciprocal of the product of the denominators, and each quotient from it with a
     /// few multiplications). `true` only for [`F32FmaSharedDiv`], the batch kernels' number
@@ -290,6 +322,8 @@ mod sealed {
     impl Sealed for super::f32x8 {}
     impl Sealed for super::f32x16 {}
     impl Sealed for super::f64x4 {}
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    impl Sealed for super::zmm::Zmm {}
 }
 
 /// The IEEE 754 binary32 fields the [`Bits`] of `f32` and its lanes read and write.
@@ -499,6 +533,15 @@ macro_rules! impl_scalar {
             fn rsqrt_estimate(self) -> Self {
                 <$t>::from_bits($l::RSQRT_MAGIC - (self.to_bits() >> 1))
             }
+            #[inline(always)]
+            fn sqrt_rsqrt_refined(self) -> (Self, Self) {
+                let s = Real::sqrt(self);
+                (s, 1.0 / s)
+            }
+            #[inline(always)]
+            fn div_refined(self, d: Self) -> Self {
+                self / d
+            }
         }
 
         impl Scalar for $t {
@@ -666,6 +709,15 @@ macro_rules! impl_lanes {
                 let f: fn($v) -> $v = $rsqrt;
                 f(self)
             }
+            #[inline(always)]
+            fn sqrt_rsqrt_refined(self) -> (Self, Self) {
+                let s = <$v>::sqrt(self);
+                (s, <$v>::splat(1.0) / s)
+            }
+            #[inline(always)]
+            fn div_refined(self, d: Self) -> Self {
+                self / d
+            }
         }
     };
 }
@@ -824,6 +876,15 @@ macro_rules! fused_f32 {
             fn rsqrt_estimate(self) -> Self {
                 $t(<f32 as Bits>::rsqrt_estimate(self.0))
             }
+            #[inline(always)]
+            fn sqrt_rsqrt_refined(self) -> (Self, Self) {
+                let (s, y) = <f32 as Bits>::sqrt_rsqrt_refined(self.0);
+                ($t(s), $t(y))
+            }
+            #[inline(always)]
+            fn div_refined(self, d: Self) -> Self {
+                $t(self.0 / d.0)
+            }
         }
     };
     (@ops $t:ident; $($tr:ident $m:ident $atr:ident $am:ident $op:tt),*) => {
@@ -932,6 +993,13 @@ pub trait Splat {
     type On<L: Real>;
     /// The same material on `L`.
     fn splat<L: Real>(&self) -> Self::On<L>;
+
+    /// Whether the material takes a square root or division through
+    /// [`crate::fast::HardwareEstimate`]: [`crate::batch`] then runs it on explicit 16-lane
+    /// AVX-512 registers (on [`crate::batch::Isa::Avx512`]), where the estimate
+    /// instructions exist, instead of the one-lane [`F32Fma`] loop that LLVM vectorizes.
+    /// `false` unless a part's policy says so (a composed model reports its parts').
+    const HARDWARE_ESTIMATES: bool = false;
 }
 
 /// `x` on `L` (through `f64`: exact for `f32` and `f64` sources on a type of at least the

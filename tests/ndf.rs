@@ -851,9 +851,9 @@ fn iso_matches_ggx<R: brdf::Scalar>(
         ("cos_lambda", iso.cos_lambda(wo), ggx.cos_lambda(wo)),
         ("g1", iso.g1(wi), ggx.g1(wi)),
         (
-            "height_correlated_den",
-            iso.height_correlated_den(wi, wo),
-            ggx.height_correlated_den(wi, wo),
+            "height_correlated_sum",
+            iso.height_correlated_sum(wi, wo),
+            ggx.height_correlated_sum(wi, wo),
         ),
         (
             "separable_den",

@@ -92,6 +92,7 @@ impl Properties {
 }
 
 impl<A: Splat, B: Splat> Splat for Sum<A, B> {
+    const HARDWARE_ESTIMATES: bool = A::HARDWARE_ESTIMATES || B::HARDWARE_ESTIMATES;
     type On<L: Real> = Sum<A::On<L>, B::On<L>>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {
@@ -169,6 +170,8 @@ impl<D, S, F> Layered<D, S, F> {
 }
 
 impl<D: Splat, S: Splat, F: Splat> Splat for Layered<D, S, F> {
+    const HARDWARE_ESTIMATES: bool =
+        D::HARDWARE_ESTIMATES || S::HARDWARE_ESTIMATES || F::HARDWARE_ESTIMATES;
     type On<L: Real> = Layered<D::On<L>, S::On<L>, F::On<L>>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {

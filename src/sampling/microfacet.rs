@@ -867,6 +867,7 @@ where
 /// The model splatted, the strategy kept: a [`Sampled`] model goes through the batch path
 /// ([`batch::sample`](crate::batch::sample)) like the model it wraps.
 impl<M: crate::real::Splat, St> crate::real::Splat for Sampled<M, St> {
+    const HARDWARE_ESTIMATES: bool = M::HARDWARE_ESTIMATES;
     type On<L: Real> = Sampled<M::On<L>, St>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {

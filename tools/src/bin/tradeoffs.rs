@@ -45,7 +45,7 @@ OPTIONS:
 use std::time::Instant;
 
 use brdf::batch;
-use brdf::fast::{FastPow, NewtonSqrt, NewtonSqrtRecip};
+use brdf::fast::{FastPow, HardwareEstimate, NewtonSqrt, NewtonSqrtRecip};
 use brdf::fresnel::{self, Conductor, Dielectric, F82Tint, FresnelTerm, Schlick};
 use brdf::masking::{
     HammonApprox, Implicit, Kelemen, Masking, SchlickGgx, SmithHeightCorrelated, SmithSeparable,
@@ -1139,6 +1139,24 @@ fn model_error<M32: Brdf<f32, 1>, M64: Brdf<f64, 1>>(
     m64: &M64,
     d: &Dirs,
 ) -> Row {
+    values_error(
+        name,
+        reference,
+        |k| m32.eval(d.p32[k].0, d.p32[k].1)[0],
+        m64,
+        d,
+    )
+}
+
+/// [`model_error`] of the f32 values `v32(k)` at the pairs `d.p32[k]` (e.g. a batch's
+/// output).
+fn values_error<M64: Brdf<f64, 1>>(
+    name: &str,
+    reference: &str,
+    v32: impl Fn(usize) -> f32,
+    m64: &M64,
+    d: &Dirs,
+) -> Row {
     let v64: Vec<f64> = d.p64.iter().map(|&(a, b)| m64.eval(a, b)[0]).collect();
     // "Not negligible": at least 1e-4 of the value at normal incidence and viewing.
     let n = Vec3::new(0.0, 0.0, 1.0);
@@ -1146,8 +1164,8 @@ fn model_error<M32: Brdf<f32, 1>, M64: Brdf<f64, 1>>(
     let max = v64.iter().fold(0.0f64, |m, &v| m.max(v.abs()));
     let floor = 1e-4 * if f_nn > 0.0 { f_nn } else { max };
     let mut w = Worst::new();
-    for (k, &(a, b)) in d.p32.iter().enumerate() {
-        w.add(m32.eval(a, b)[0] as f64, v64[k], floor, k);
+    for (k, &v) in v64.iter().enumerate() {
+        w.add(v32(k) as f64, v, floor, k);
     }
     let at = |k: usize| {
         let (a, b) = d.p64[k];
@@ -1331,6 +1349,68 @@ fn sqrt_models_table() -> Table {
         ),
         [NewtonSqrt<2>, NewtonSqrt<3>]
     );
+    // `HardwareEstimate`: exact on scalars, so its error is the batch's on AVX-512.
+    if batch::Isa::Avx512.is_available() {
+        let all: [Vec<f32>; 6] = core::array::from_fn(|c| {
+            d.p32
+                .iter()
+                .map(|(a, b)| [a.x, a.y, a.z, b.x, b.y, b.z][c])
+                .collect()
+        });
+        let (ai, ao) = (
+            batch::Directions::new(&all[0], &all[1], &all[2]),
+            batch::Directions::new(&all[3], &all[4], &all[5]),
+        );
+        macro_rules! estimate_row {
+            ($label:expr, $exact32:expr, $exact64:expr) => {{
+                let (exact32, exact64) = ($exact32, $exact64);
+                let fast32 = exact32.with_sqrt::<HardwareEstimate>();
+                let avx = batch::Isa::Avx512;
+                let mut out = vec![0.0f32; d.p32.len()];
+                batch::eval_with(avx, &fast32, ai, ao, [&mut out]).unwrap();
+                let mut r = values_error(
+                    &format!("{}, `HardwareEstimate` f32, batch (Avx512)", $label),
+                    "`ExactSqrt` f64",
+                    |k| out[k],
+                    &exact64,
+                    d,
+                );
+                let (mut oa, mut ob) = (vec![0.0f32; N_TIME], vec![0.0f32; N_TIME]);
+                r.cost = Some(time_pair(
+                    N_TIME,
+                    || batch::eval_with(avx, black_box(&exact32), wi, wo, [&mut oa]).unwrap(),
+                    || batch::eval_with(avx, black_box(&fast32), wi, wo, [&mut ob]).unwrap(),
+                ));
+                rows.push(r);
+            }};
+        }
+        estimate_row!(
+            "Cook-Torrance GGX α = 0.3, Schlick, correlated Smith",
+            CookTorrance::new(
+                GgxIsotropic::<f32>::new(0.3).unwrap(),
+                Schlick::<f32, 1>::new([0.04]).unwrap(),
+                SmithHeightCorrelated,
+            ),
+            CookTorrance::new(
+                GgxIsotropic::<f64>::new(0.3).unwrap(),
+                Schlick::<f64, 1>::new([0.04]).unwrap(),
+                SmithHeightCorrelated,
+            )
+        );
+        estimate_row!(
+            "Cook-Torrance Beckmann α = 0.3, dielectric η = 1.5, separable Smith",
+            CookTorrance::new(
+                Beckmann::<f32>::new(0.3).unwrap(),
+                Dielectric::<f32>::new(1.5).unwrap(),
+                SmithSeparable,
+            ),
+            CookTorrance::new(
+                Beckmann::<f64>::new(0.3).unwrap(),
+                Dielectric::<f64>::new(1.5).unwrap(),
+                SmithSeparable,
+            )
+        );
+    }
     for s in [16.0, 256.0, 1e4] {
         rows_for!(
             format!("engine Blinn-Phong s = {s}"),
@@ -1344,9 +1424,13 @@ fn sqrt_models_table() -> Table {
         note: "`|wi + wo|` and `1/|wi + wo|` by `fast::rsqrt::<N>` (bit-trick start, N Newton \
                steps) instead of a square root and a division, in f32, against the exact \
                model in f64 on the direction set of the models table; `NewtonSqrtRecip<3, 3>` also \
-               takes the final division by `fast::recip::<3>`. Worst at: the maximum \
-               relative error. Cost: the scalar f32 `eval` loop, and `batch::eval_with` on the \
-               dispatched instruction set, each against the same model with `ExactSqrt`."
+               takes the final division by `fast::recip::<3>`. `HardwareEstimate` rows (on \
+               AVX-512 CPUs): the batch output on `Isa::Avx512`, where `vrsqrt14ps`/`vrcp14ps` \
+               with one refinement step take the half vector and the final division, and its \
+               cost against the exact model's batch on the same instruction set. Worst at: \
+               the maximum relative error. Cost: the scalar f32 `eval` loop, and \
+               `batch::eval_with` on the dispatched instruction set, each against the same \
+               model with `ExactSqrt`."
             .into(),
         rows,
     }
