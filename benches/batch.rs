@@ -31,8 +31,60 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 
 const N: usize = 1 << 16;
 
+/// One stream of a benchmark (a coordinate of the directions, or an output channel): `N`
+/// floats at a chosen offset within a 4 KiB page.
+///
+/// Why placed: a load whose address equals, in its low 12 bits, that of a store still in
+/// flight waits for it ("4K aliasing"). Where the allocator happens to put the streams
+/// decides whether the output store of one iteration aliases the input loads of the next
+/// few, and that moved `batch/ggx_schlick` by 12 % on an Intel Xeon (Sapphire Rapids class)
+/// between runs of the same binary. So every input starts at [`INPUT_OFFSET`] and every
+/// output half a page away (a store aliases a load only 32 iterations later, long retired).
+/// `BRDF_BENCH_LAYOUT=aliased` puts the outputs 128 bytes behind the inputs instead (the store
+/// of iteration `j` aliases the loads of iteration `j + 2`): the layout's worst case.
+struct Stream(&'static mut [f32]);
+
+impl core::ops::Deref for Stream {
+    type Target = [f32];
+    fn deref(&self) -> &[f32] {
+        self.0
+    }
+}
+
+impl core::ops::DerefMut for Stream {
+    fn deref_mut(&mut self) -> &mut [f32] {
+        self.0
+    }
+}
+
+/// The page offset of every input stream (bytes).
+const INPUT_OFFSET: usize = 2048;
+
+/// The page offset of every output stream (bytes): see [`Stream`].
+fn output_offset() -> usize {
+    match std::env::var("BRDF_BENCH_LAYOUT").as_deref() {
+        Ok("aliased") => INPUT_OFFSET - 128,
+        _ => 0,
+    }
+}
+
+/// `data` copied into a new stream starting at `offset` bytes into a page (leaked: a
+/// benchmark allocates a few).
+fn stream(offset: usize, data: &[f32]) -> Stream {
+    let buf: &'static mut [f32] = Vec::leak(vec![0.0f32; data.len() + 1024]);
+    let start = (offset + 4096 - buf.as_ptr() as usize % 4096) % 4096 / 4;
+    let s = &mut buf[start..start + data.len()];
+    s.copy_from_slice(data);
+    Stream(s)
+}
+
+/// An output stream of `N` zeros.
+fn output() -> Stream {
+    stream(output_offset(), &[0.0; N])
+}
+
 /// Deterministic directions on the upper hemisphere (xorshift, warped uniformly).
-fn directions(seed: u32) -> [Vec<f32>; 3] {
+fn directions(seed: u32) -> [Stream; 3] {
     let mut s = seed;
     let mut u = || {
         s ^= s << 13;
@@ -46,7 +98,7 @@ fn directions(seed: u32) -> [Vec<f32>; 3] {
         let r = (1.0 - c * c).max(0.0).sqrt();
         (x[i], y[i], z[i]) = (r * phi.cos(), r * phi.sin(), c);
     }
-    [x, y, z]
+    [x, y, z].map(|v| stream(INPUT_OFFSET, &v))
 }
 
 /// The GGX + Schlick + height-correlated Smith formula written by hand for `f32`, the way an
@@ -99,13 +151,13 @@ fn ggx_by_hand_branchless(wi: [f32; 3], wo: [f32; 3], alpha: f32, f0: f32) -> f3
 /// every channel.
 fn lanes<L: Real<Scalar = f32>, B: Brdf<L, C>, const C: usize>(
     b: &B,
-    wi: &[Vec<f32>; 3],
-    wo: &[Vec<f32>; 3],
-    out: &mut [Vec<f32>; C],
+    wi: &[Stream; 3],
+    wo: &[Stream; 3],
+    out: &mut [Stream; C],
 ) {
     let w = L::LANES;
     for k in 0..N / w {
-        let at = |v: &Vec<f32>| L::from_fn(|l| v[k * w + l]);
+        let at = |v: &Stream| L::from_fn(|l| v[k * w + l]);
         let f = b.eval(
             Vec3::new(at(&wi[0]), at(&wi[1]), at(&wi[2])),
             Vec3::new(at(&wo[0]), at(&wo[1]), at(&wo[2])),
@@ -122,9 +174,9 @@ fn lanes<L: Real<Scalar = f32>, B: Brdf<L, C>, const C: usize>(
 /// does), every channel written.
 fn scalar<B: Brdf<f32, C>, const C: usize>(
     b: &B,
-    wi: &[Vec<f32>; 3],
-    wo: &[Vec<f32>; 3],
-    out: &mut [Vec<f32>; C],
+    wi: &[Stream; 3],
+    wo: &[Stream; 3],
+    out: &mut [Stream; C],
 ) {
     let (ix, iy, iz) = (&wi[0][..N], &wi[1][..N], &wi[2][..N]);
     let (ox, oy, oz) = (&wo[0][..N], &wo[1][..N], &wo[2][..N]);
@@ -144,9 +196,9 @@ fn scalar<B: Brdf<f32, C>, const C: usize>(
 fn bench_scalar_and_lanes<B, const C: usize>(
     g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
     model: &B,
-    wi: &[Vec<f32>; 3],
-    wo: &[Vec<f32>; 3],
-    out: &mut [Vec<f32>; C],
+    wi: &[Stream; 3],
+    wo: &[Stream; 3],
+    out: &mut [Stream; C],
 ) where
     B: Brdf<f32, C> + Splat,
     B::On<f32x4>: Brdf<f32x4, C>,
@@ -176,9 +228,9 @@ fn bench_isas<B, const C: usize>(
     name: &str,
     entry: Entry<B, C>,
     brdf: &B,
-    wi: &[Vec<f32>; 3],
-    wo: &[Vec<f32>; 3],
-    out: &mut [Vec<f32>; C],
+    wi: &[Stream; 3],
+    wo: &[Stream; 3],
+    out: &mut [Stream; C],
 ) {
     for isa in Isa::ALL.into_iter().filter(|i| i.is_available()) {
         g.bench_with_input(
@@ -186,7 +238,7 @@ fn bench_isas<B, const C: usize>(
             &isa,
             |b, &isa| {
                 b.iter(|| {
-                    let slices = out.each_mut().map(|c| c.as_mut_slice());
+                    let slices = out.each_mut().map(|c| &mut **c);
                     entry(
                         isa,
                         black_box(brdf),
@@ -205,8 +257,8 @@ fn bench_isas<B, const C: usize>(
 fn bench_by_hand(
     g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
     name: &str,
-    wi: &[Vec<f32>; 3],
-    wo: &[Vec<f32>; 3],
+    wi: &[Stream; 3],
+    wo: &[Stream; 3],
     out: &mut [f32],
     body: impl Fn([f32; 3], [f32; 3], f32, f32) -> f32,
 ) {
@@ -232,7 +284,7 @@ fn bench_memory_ceiling(c: &mut Criterion) {
     let (wi, wo) = (directions(1), directions(7));
     let mut g = c.benchmark_group("batch/memory_ceiling");
     g.throughput(Throughput::Elements(N as u64));
-    fn run<const C: usize>(wi: &[Vec<f32>; 3], wo: &[Vec<f32>; 3], out: &mut [Vec<f32>; C]) {
+    fn run<const C: usize>(wi: &[Stream; 3], wo: &[Stream; 3], out: &mut [Stream; C]) {
         let (ix, iy, iz) = (&wi[0][..N], &wi[1][..N], &wi[2][..N]);
         let (ox, oy, oz) = (&wo[0][..N], &wo[1][..N], &wo[2][..N]);
         let mut out = out.each_mut().map(|o| &mut o[..N]);
@@ -243,11 +295,11 @@ fn bench_memory_ceiling(c: &mut Criterion) {
             }
         }
     }
-    let mut out1 = [vec![0.0f32; N]];
+    let mut out1 = [output()];
     g.bench_function("read6_write1", |b| {
         b.iter(|| run(black_box(&wi), &wo, &mut out1))
     });
-    let mut out3 = [vec![0.0f32; N], vec![0.0f32; N], vec![0.0f32; N]];
+    let mut out3 = [output(), output(), output()];
     g.bench_function("read6_write3", |b| {
         b.iter(|| run(black_box(&wi), &wo, &mut out3))
     });
@@ -256,7 +308,7 @@ fn bench_memory_ceiling(c: &mut Criterion) {
 
 fn bench_ggx_schlick(c: &mut Criterion) {
     let (wi, wo) = (directions(1), directions(7));
-    let mut out = vec![0.0f32; N];
+    let mut out = output();
     let mut g = c.benchmark_group("batch/ggx_schlick");
     g.throughput(Throughput::Elements(N as u64));
     // The same loop shape for the hand-written bodies and the crate's generic one
@@ -357,7 +409,7 @@ impl<K: Real<Scalar = f32, Mask = bool>, B: Pipelined<K, 3>> Pipelined<K, 3> for
 
 fn bench_rough_conductor(c: &mut Criterion) {
     let (wi, wo) = (directions(3), directions(11));
-    let mut out = [vec![0.0f32; N], vec![0.0f32; N], vec![0.0f32; N]];
+    let mut out = [output(), output(), output()];
     let m = TimesCos(CookTorrance::new(
         GgxIsotropic::<f32>::new(0.2).unwrap(),
         Conductor::<f32, 3>::from_preset(ior::Preset::Gold).unwrap(),
@@ -425,7 +477,7 @@ fn bench_normalized_blinn_phong(c: &mut Criterion) {
     use brdf::models::NormalizedBlinnPhong;
     use brdf::normalization::Normalization;
     let (wi, wo) = (directions(5), directions(13));
-    let out = vec![0.0f32; N];
+    let out = output();
     let exact = NormalizedBlinnPhong::new(
         [0.5_f32],
         0.5,
@@ -477,7 +529,7 @@ fn bench_normalized_blinn_phong(c: &mut Criterion) {
 fn bench_multiscatter(c: &mut Criterion) {
     use brdf::models::{KullaConty, Turquin};
     let (wi, wo) = (directions(1), directions(7));
-    let mut out = [vec![0.0f32; N]];
+    let mut out = [output()];
     let mut g = c.benchmark_group("batch/multiscatter");
     g.throughput(Throughput::Elements(N as u64));
     let ct = CookTorrance::new(

@@ -25,6 +25,18 @@
 //!   `tests/models.rs` but Kajiya-Kay (64: its `pow` with exponents up to 2·10⁴ amplifies
 //!   them), and 4·10⁻⁷ relative on the batch tests' workloads.
 //!
+//! **Hardware estimates.** A model that takes a square root or division through
+//! [`crate::fast::HardwareEstimate`] ([`Splat::HARDWARE_ESTIMATES`]) runs differently on
+//! [`Isa::Avx512`] in [`eval_with`], [`eval`] and [`eval_glam`]: on explicit 16-lane AVX-512
+//! registers, 16 pairs per iteration and the remainder under a lane mask, because LLVM does
+//! not vectorize the scalar estimate instructions. There those operations are `vrsqrt14ps` /
+//! `vrcp14ps` with one refinement step (each within 1 ULP), every other operation is the one
+//! of [`F32Fma`], and results are within a few ULP of the exact policy (`tests/batch.rs`:
+//! 1e-6 relative) but not bit-identical to any `eval`. On the other instruction sets (and in
+//! the pipelined and sampling loops) the policy is the exact one, bit for bit. A wrapper
+//! model of your own forwards the flag in its `Splat` impl
+//! (`const HARDWARE_ESTIMATES: bool = B::HARDWARE_ESTIMATES;`), or it runs exact.
+//!
 //! Bodies that call a library transcendental (`powf`, `exp` from `std`/`libm`) do not
 //! vectorize this way; the models offer polynomial alternatives (see [`crate::fast`]) for
 //! their batch use.
@@ -164,9 +176,13 @@ impl core::error::Error for Unavailable {}
 /// What the batch entry points need of a model: its `f32` form (for the portable loop) and
 /// its [`F32Fma`] and [`F32FmaSharedDiv`] forms (for the FMA loops, see [`shares_divisions`]).
 ///
-/// Implemented for every `B: Brdf<f32, N> + Splat` whose [`F32Fma`] and [`F32FmaSharedDiv`]
-/// forms are models on those types — every model of this crate, and a model of your own
-/// once it is generic over [`Real`] and implements [`Splat`] (see its example).
+/// Implemented for every `B: Brdf<f32, N> + Splat` whose forms on the kernels' number types
+/// ([`F32Fma`], [`F32FmaSharedDiv`] and the crate-private 16-lane AVX-512 type of the
+/// hardware estimates) are models on those types — every model of this crate, and a model
+/// of your own once it is generic over [`Real`] and implements [`Splat`] (see its example).
+///
+/// In generic code, bound the composed model (`CookTorrance<f32, D, F, G>: BatchBrdf<3>`)
+/// rather than each part's forms: the AVX-512 type cannot be named outside the crate.
 pub trait BatchBrdf<const N: usize>: Brdf<f32, N> + wide_form::WideForm<N> {
     /// Whether the model asks for [`crate::fast::HardwareEstimate`]
     /// ([`Splat::HARDWARE_ESTIMATES`]): [`Isa::Avx512`] then runs it on explicit 16-lane
@@ -651,29 +667,40 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
         wi.len() == wo.len() && wo.len() == out.len(),
         "eval_glam: lengths differ"
     );
+    let isa = Isa::detect();
+    if B::HARDWARE_ESTIMATES && isa == Isa::Avx512 {
+        // The explicit 16-lane kernel takes the model by value: `eval_with` per chunk.
+        glam_chunks(wi, wo, out, |i, o, s| {
+            let _ = eval_with(isa, brdf, i, o, s);
+        });
+        return;
+    }
     // The kernels' form once per call (only the one they run), not per chunk.
     let portable = PerPair::<f32, B>(brdf, PhantomData);
+    // The detected variant is available by construction.
     if shares_divisions() {
         let shared = brdf.shared_div();
         let shared = PerPair::<F32FmaSharedDiv, B::SharedDiv>(&shared, PhantomData);
-        glam_chunks(&portable, &shared, wi, wo, out);
+        glam_chunks(wi, wo, out, |i, o, s| {
+            let _ = dispatch(isa, &portable, &shared, i, o, s);
+        });
     } else {
         let fused = brdf.fused();
         let fused = PerPair::<F32Fma, B::Fused>(&fused, PhantomData);
-        glam_chunks(&portable, &fused, wi, wo, out);
+        glam_chunks(wi, wo, out, |i, o, s| {
+            let _ = dispatch(isa, &portable, &fused, i, o, s);
+        });
     }
 }
 
-/// The chunked transposition of [`eval_glam`] around [`dispatch`].
-fn glam_chunks<P: Loop<N>, F: Loop<N>, const N: usize>(
-    portable: &P,
-    fma: &F,
+/// The chunked transposition of [`eval_glam`] around `run` (a batch loop on one chunk).
+fn glam_chunks<const N: usize>(
     wi: &[glam::Vec3],
     wo: &[glam::Vec3],
     out: &mut [[f32; N]],
+    mut run: impl FnMut(Directions<'_>, Directions<'_>, [&mut [f32]; N]),
 ) {
     const CHUNK: usize = 256;
-    let isa = Isa::detect();
     let mut soa = [[0.0f32; CHUNK]; 6];
     let mut res = [[0.0f32; CHUNK]; N];
     for ((wi, wo), out) in wi
@@ -694,8 +721,7 @@ fn glam_chunks<P: Loop<N>, F: Loop<N>, const N: usize>(
         let dirs_i = Directions::new(&ix[..n], &iy[..n], &iz[..n]);
         let dirs_o = Directions::new(&ox[..n], &oy[..n], &oz[..n]);
         let slices = res.each_mut().map(|c| &mut c[..n]);
-        // The detected variant is available by construction.
-        let _ = dispatch(isa, portable, fma, dirs_i, dirs_o, slices);
+        run(dirs_i, dirs_o, slices);
         for (i, o) in out.iter_mut().enumerate() {
             *o = core::array::from_fn(|c| res[c][i]);
         }

@@ -998,7 +998,10 @@ pub trait Splat {
     /// [`crate::fast::HardwareEstimate`]: [`crate::batch`] then runs it on explicit 16-lane
     /// AVX-512 registers (on [`crate::batch::Isa::Avx512`]), where the estimate
     /// instructions exist, instead of the one-lane [`F32Fma`] loop that LLVM vectorizes.
-    /// `false` unless a part's policy says so (a composed model reports its parts').
+    /// `false` unless a part's policy says so: a composed model reports its parts' (`a || b`),
+    /// and a wrapper of your own forwards its model's
+    /// (`const HARDWARE_ESTIMATES: bool = B::HARDWARE_ESTIMATES;`), or the batch path runs
+    /// it with the exact operations.
     const HARDWARE_ESTIMATES: bool = false;
 }
 

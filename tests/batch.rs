@@ -394,6 +394,20 @@ fn glam_convenience_matches_scalar() {
             out[i][0]
         );
     }
+    // With the hardware estimates: the bits of `batch::eval` on the same pairs (whose
+    // estimate path the test above bounds), through the same kernel.
+    let estimate = ct.with_sqrt::<HardwareEstimate>();
+    batch::eval_glam(&estimate, &wi, &wo, &mut out);
+    let mut soa = vec![0.0f32; 700];
+    batch::eval(
+        &estimate,
+        Directions::new(&d[0], &d[1], &d[2]),
+        Directions::new(&d[3], &d[4], &d[5]),
+        [&mut soa],
+    );
+    for i in 0..700 {
+        assert_eq!(out[i][0].to_bits(), soa[i].to_bits(), "{i}");
+    }
 }
 
 #[test]

@@ -130,8 +130,9 @@ STATUS=0
 # -shared: the conductor with SharedDivision (one division for the three channels where
 # brdf::batch::shares_divisions(): Intel CPUs; the same as exact elsewhere); -newton: the same
 # with brdf::fast::NewtonSqrtRecip<3, 3> (square roots and divisions by refined estimates,
-# within a few ULP of the exact policy).
-for V in isotropic ggx isotropic-shared ggx-shared isotropic-newton ggx-newton; do
+# within a few ULP of the exact policy); -estimate: with brdf::fast::HardwareEstimate (the
+# AVX-512 estimate instructions and one refinement step on Isa::Avx512, exact elsewhere).
+for V in isotropic ggx isotropic-shared ggx-shared isotropic-newton ggx-newton isotropic-estimate; do
     NDF=${V%%-*}
     POLICY=exact
     [ "$V" = "$NDF" ] || POLICY=${V#*-}
@@ -178,7 +179,8 @@ VARIANTS = (("isotropic", "GgxIsotropic"), ("ggx", "Ggx"),
             ("isotropic-shared", "GgxIsotropic, SharedDivision"),
             ("ggx-shared", "Ggx, SharedDivision"),
             ("isotropic-newton", "GgxIsotropic, NewtonSqrtRecip<3,3>"),
-            ("ggx-newton", "Ggx, NewtonSqrtRecip<3,3>"))
+            ("ggx-newton", "Ggx, NewtonSqrtRecip<3,3>"),
+            ("isotropic-estimate", "GgxIsotropic, HardwareEstimate"))
 b, c = {}, {}
 for ndf, _ in VARIANTS:
     b[ndf], c[ndf] = load(f"brdf-eval-{ndf}.json"), load(f"compare-{ndf}.json")

@@ -30,7 +30,7 @@ use std::time::Instant;
 use std::{fs, process};
 
 use brdf::batch::{self, BatchBrdf, BatchSample, Directions, Isa, SampleOut};
-use brdf::fast::{ExactSqrt, NewtonSqrtRecip};
+use brdf::fast::{ExactSqrt, HardwareEstimate, NewtonSqrtRecip};
 use brdf::fresnel::Conductor;
 use brdf::masking::SmithSeparable;
 use brdf::models::{CookTorrance, Properties};
@@ -62,20 +62,24 @@ impl<R: Real, B: Brdf<R, 3>> Brdf<R, 3> for TimesCosThetaI<B> {
 
 impl<B: Splat> Splat for TimesCosThetaI<B> {
     type On<L: Real> = TimesCosThetaI<B::On<L>>;
+    // A wrapper forwards its model's choice, or batch::eval would not see it.
+    const HARDWARE_ESTIMATES: bool = B::HARDWARE_ESTIMATES;
     fn splat<L: Real>(&self) -> Self::On<L> {
         TimesCosThetaI(self.0.splat())
     }
 }
 
 const USAGE: &str = "usage: peer_roughconductor --pairs FILE --values OUT --timing OUT.json \\
-    --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--policy exact|shared|newton]
+    --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--policy exact|shared|newton|estimate]
     [--mode eval|sample] [--strategy vndf|caps] [--isa detect|portable|avx2|avx512]
     [--reps N] [--warmup N]
 
 Times brdf::batch::eval on Mitsuba's roughconductor workload over the pairs of FILE (written
 by benches/peers/peers.py gen), writes the values (3 channels) to OUT and the timing to
 OUT.json. --policy newton takes the half vector, the final division and the conductor's
-square roots and divisions by brdf::fast::NewtonSqrtRecip<3, 3>; --policy shared gives the
+square roots and divisions by brdf::fast::NewtonSqrtRecip<3, 3>, --policy estimate by
+brdf::fast::HardwareEstimate (vrsqrt14ps/vrcp14ps + one step on Isa::Avx512, exact
+elsewhere); --policy shared gives the
 conductor SharedDivision (one division for the three channels where
 brdf::batch::shares_divisions(), e.g. on Intel); default: exact.
 --mode sample times brdf::batch::sample on the viewer directions and uniforms of FILE
@@ -377,8 +381,9 @@ fn eval_mode(
             ExactSqrt
         ),
         "newton" => run!(gold.with_policy::<Fast>(), Fast),
+        "estimate" => run!(gold.with_policy::<HardwareEstimate>(), HardwareEstimate),
         other => fail(format!(
-            "--policy {other:?}: expected exact, shared or newton"
+            "--policy {other:?}: expected exact, shared, newton or estimate"
         )),
     }
 }
