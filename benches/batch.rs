@@ -11,7 +11,9 @@
 //! * `normalized_blinn_phong`: the seed's normalized Blinn-Phong, diffuse + specular, one
 //!   channel, with the exact `powf` and with `fast::pow_phong` (|relative error| ≤ 1e-5)
 //!   (≥ 0.7 G evaluations/s);
-//! * `multiscatter`: GGX + Schlick plain, with Kulla-Conty and with Turquin compensation.
+//! * `multiscatter`: GGX + Schlick plain, with Kulla-Conty and with Turquin compensation;
+//! * `material`: the run-time `Material` against the static model it holds (rough gold
+//!   conductor, Lambert).
 //!
 //! Every workload runs as `scalar_f32` (one `eval` per pair in a plain loop), on each wide
 //! lane width (`f32x4`, `f32x8`, `f32x16`: the model's `Splat`; on a default build these are
@@ -390,7 +392,7 @@ impl<R: Real, B: Brdf<R, 3>> Brdf<R, 3> for TimesCos<B> {
 }
 impl<B: Splat> Splat for TimesCos<B> {
     type On<L: Real> = TimesCos<B::On<L>>;
-    const HARDWARE_ESTIMATES: bool = B::HARDWARE_ESTIMATES;
+    const EXPLICIT_LANES: bool = B::EXPLICIT_LANES;
     fn splat<L: Real>(&self) -> Self::On<L> {
         TimesCos(self.0.splat())
     }
@@ -562,12 +564,77 @@ fn bench_multiscatter(c: &mut Criterion) {
     g.finish();
 }
 
+/// The run-time `Material` against the static model it holds (the rough gold conductor of
+/// `rough_conductor`, without the cosine; Lambert), through `batch::eval_with`: on AVX-512
+/// the material runs on explicit 16-lane registers (one `match` per 16 pairs).
+fn bench_material(c: &mut Criterion) {
+    use brdf::fresnel::AnyFresnel;
+    use brdf::masking::AnyMasking;
+    use brdf::material::Material;
+    use brdf::models::Lambert;
+    use brdf::ndf::AnyNdf;
+    let (wi, wo) = (directions(3), directions(11));
+    let mut out = [output(), output(), output()];
+    let mut g = c.benchmark_group("batch/material");
+    g.throughput(Throughput::Elements(N as u64));
+    let gold = CookTorrance::new(
+        GgxIsotropic::<f32>::new(0.2).unwrap(),
+        Conductor::<f32, 3>::from_preset(ior::Preset::Gold).unwrap(),
+        SmithSeparable,
+    );
+    let runtime = Material::from(CookTorrance::new(
+        AnyNdf::from(gold.ndf),
+        AnyFresnel::from(gold.fresnel),
+        AnyMasking::from(gold.masking),
+    ));
+    bench_isas(
+        &mut g,
+        "gold_static",
+        batch::eval_with,
+        &gold,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    bench_isas(
+        &mut g,
+        "gold_material",
+        batch::eval_with,
+        &runtime,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    let lambert = Lambert::<f32, 3>::new([0.2, 0.3, 0.4]).unwrap();
+    let runtime = Material::from(lambert);
+    bench_isas(
+        &mut g,
+        "lambert_static",
+        batch::eval_with,
+        &lambert,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    bench_isas(
+        &mut g,
+        "lambert_material",
+        batch::eval_with,
+        &runtime,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    g.finish();
+}
+
 criterion_group!(
     benches,
     bench_memory_ceiling,
     bench_ggx_schlick,
     bench_rough_conductor,
     bench_normalized_blinn_phong,
-    bench_multiscatter
+    bench_multiscatter,
+    bench_material
 );
 criterion_main!(benches);

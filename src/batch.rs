@@ -25,17 +25,25 @@
 //!   `tests/models.rs` but Kajiya-Kay (64: its `pow` with exponents up to 2·10⁴ amplifies
 //!   them), and 4·10⁻⁷ relative on the batch tests' workloads.
 //!
-//! **Hardware estimates.** A model that takes a square root or division through
-//! [`crate::fast::HardwareEstimate`] ([`Splat::HARDWARE_ESTIMATES`]) runs differently on
-//! [`Isa::Avx512`] in [`eval_with`], [`eval`] and [`eval_glam`]: on explicit 16-lane AVX-512
-//! registers, 16 pairs per iteration and the remainder under a lane mask, because LLVM does
-//! not vectorize the scalar estimate instructions. There those operations are `vrsqrt14ps` /
-//! `vrcp14ps` with one refinement step (each within 1 ULP), every other operation is the one
-//! of [`F32Fma`], and results are within a few ULP of the exact policy (`tests/batch.rs`:
-//! 1e-6 relative) but not bit-identical to any `eval`. On the other instruction sets (and in
-//! the pipelined and sampling loops) the policy is the exact one, bit for bit. A wrapper
-//! model of your own forwards the flag in its `Splat` impl
-//! (`const HARDWARE_ESTIMATES: bool = B::HARDWARE_ESTIMATES;`), or it runs exact.
+//! **Explicit lanes.** Two kinds of model run differently on [`Isa::Avx512`] in
+//! [`eval_with`], [`eval`] and [`eval_glam`] ([`Splat::EXPLICIT_LANES`]): on explicit 16-lane
+//! AVX-512 registers, 16 pairs per iteration and the remainder under a lane mask, every
+//! operation the one of [`F32Fma`] (so `eval` on the [`F32Fma`] form still gives the bits),
+//! except that
+//!
+//! * a model that takes a square root or division through [`crate::fast::HardwareEstimate`]
+//!   gets `vrsqrt14ps` / `vrcp14ps` with one refinement step there (each within 1 ULP; LLVM
+//!   does not vectorize the scalar estimate instructions): results within a few ULP of the
+//!   exact policy (`tests/batch.rs`: 1e-6 relative), not bit-identical to any `eval`. On the
+//!   other instruction sets (and in the pipelined and sampling loops) the policy is the
+//!   exact one, bit for bit;
+//! * a [`crate::material::Material`] (not its `Sum` and `Layered` compositions) runs there
+//!   because its per-call `match` keeps LLVM from vectorizing the one-lane loop: on 16 lanes
+//!   it is one branch per 16 evaluations (bit for bit the [`F32Fma`] form).
+//!
+//! A wrapper model of your own forwards the flag in its `Splat` impl
+//! (`const EXPLICIT_LANES: bool = B::EXPLICIT_LANES;` and `explicit_lanes`), or it runs on
+//! the one-lane loop.
 //!
 //! Bodies that call a library transcendental (`powf`, `exp` from `std`/`libm`) do not
 //! vectorize this way; the models offer polynomial alternatives (see [`crate::fast`]) for
@@ -184,10 +192,11 @@ impl core::error::Error for Unavailable {}
 /// In generic code, bound the composed model (`CookTorrance<f32, D, F, G>: BatchBrdf<3>`)
 /// rather than each part's forms: the AVX-512 type cannot be named outside the crate.
 pub trait BatchBrdf<const N: usize>: Brdf<f32, N> + wide_form::WideForm<N> {
-    /// Whether the model asks for [`crate::fast::HardwareEstimate`]
-    /// ([`Splat::HARDWARE_ESTIMATES`]): [`Isa::Avx512`] then runs it on explicit 16-lane
-    /// registers.
-    const HARDWARE_ESTIMATES: bool;
+    /// Whether [`Isa::Avx512`] may run the model on explicit 16-lane registers
+    /// ([`Splat::EXPLICIT_LANES`]).
+    const EXPLICIT_LANES: bool;
+    /// Whether it does for this value ([`Splat::explicit_lanes`]).
+    fn explicit_lanes(&self) -> bool;
     /// The same model on [`F32Fma`].
     type Fused: Brdf<F32Fma, N>;
     /// The same model on [`F32FmaSharedDiv`].
@@ -206,7 +215,11 @@ where
     B::On<F32FmaSharedDiv>: Brdf<F32FmaSharedDiv, N>,
     B: wide_form::WideForm<N>,
 {
-    const HARDWARE_ESTIMATES: bool = B::HARDWARE_ESTIMATES;
+    const EXPLICIT_LANES: bool = <B as Splat>::EXPLICIT_LANES;
+    #[inline]
+    fn explicit_lanes(&self) -> bool {
+        <B as Splat>::EXPLICIT_LANES && Splat::explicit_lanes(self)
+    }
     type Fused = B::On<F32Fma>;
     type SharedDiv = B::On<F32FmaSharedDiv>;
     #[inline]
@@ -475,7 +488,7 @@ pub fn eval_with<B: BatchBrdf<N>, const N: usize>(
     // Only the form the FMA kernels run is built.
     let portable = PerPair::<f32, B>(brdf, PhantomData);
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
-    if B::HARDWARE_ESTIMATES && isa == Isa::Avx512 && isa.is_available() {
+    if B::EXPLICIT_LANES && isa == Isa::Avx512 && isa.is_available() && brdf.explicit_lanes() {
         let wide = brdf.wide();
         // SAFETY: `is_available` checked at run time that the CPU has these features.
         unsafe { kernel_avx512_lanes16(wide, wi, wo, out) };
@@ -668,7 +681,7 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
         "eval_glam: lengths differ"
     );
     let isa = Isa::detect();
-    if B::HARDWARE_ESTIMATES && isa == Isa::Avx512 {
+    if B::EXPLICIT_LANES && isa == Isa::Avx512 && brdf.explicit_lanes() {
         // The explicit 16-lane kernel takes the model by value: `eval_with` per chunk.
         glam_chunks(wi, wo, out, |i, o, s| {
             let _ = eval_with(isa, brdf, i, o, s);

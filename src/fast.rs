@@ -785,7 +785,7 @@ pub trait SqrtFn: Copy + core::fmt::Debug + Default + Send + Sync + 'static {
 
     /// Whether the policy wants the hardware estimates of the batch path's explicit
     /// AVX-512 lanes ([`HardwareEstimate`]); a model reports it through
-    /// [`crate::real::Splat::HARDWARE_ESTIMATES`].
+    /// [`crate::real::Splat::EXPLICIT_LANES`].
     const HARDWARE_ESTIMATES: bool = false;
 }
 

@@ -1358,7 +1358,7 @@ impl<R: Real, const N: usize, P: SqrtFn, D: DivisionPlan> Conductor<R, N, P, D> 
 }
 
 impl<S: Scalar, const N: usize, P: SqrtFn, D: DivisionPlan> Splat for Conductor<S, N, P, D> {
-    const HARDWARE_ESTIMATES: bool = P::HARDWARE_ESTIMATES;
+    const EXPLICIT_LANES: bool = P::HARDWARE_ESTIMATES;
     type On<L: Real> = Conductor<L, N, P, D>;
     #[inline]
     fn splat<L: Real>(&self) -> Conductor<L, N, P, D> {

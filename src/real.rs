@@ -994,15 +994,25 @@ pub trait Splat {
     /// The same material on `L`.
     fn splat<L: Real>(&self) -> Self::On<L>;
 
-    /// Whether the material takes a square root or division through
-    /// [`crate::fast::HardwareEstimate`]: [`crate::batch`] then runs it on explicit 16-lane
-    /// AVX-512 registers (on [`crate::batch::Isa::Avx512`]), where the estimate
-    /// instructions exist, instead of the one-lane [`F32Fma`] loop that LLVM vectorizes.
-    /// `false` unless a part's policy says so: a composed model reports its parts' (`a || b`),
-    /// and a wrapper of your own forwards its model's
-    /// (`const HARDWARE_ESTIMATES: bool = B::HARDWARE_ESTIMATES;`), or the batch path runs
-    /// it with the exact operations.
-    const HARDWARE_ESTIMATES: bool = false;
+    /// Whether [`crate::batch`] may run the material on explicit 16-lane AVX-512 registers
+    /// (on [`crate::batch::Isa::Avx512`]) instead of the one-lane [`F32Fma`] loop that LLVM
+    /// vectorizes: `true` for a model that takes a square root or division through
+    /// [`crate::fast::HardwareEstimate`] (the estimate instructions exist only there) and for
+    /// [`crate::material::Material`] (its per-call `match` keeps LLVM from vectorizing the
+    /// one-lane loop; on 16 lanes it costs one branch per 16 evaluations). `false` by
+    /// default; a composed model reports its parts' (`a || b`), and a wrapper of your own
+    /// forwards its model's (`const EXPLICIT_LANES: bool = B::EXPLICIT_LANES;` and
+    /// [`Splat::explicit_lanes`]), or the batch path runs it on the one-lane loop (exact
+    /// operations, and slow for a `Material`).
+    const EXPLICIT_LANES: bool = false;
+
+    /// [`Splat::EXPLICIT_LANES`] for this value (checked once per batch call): a
+    /// [`crate::material::Material`] says `false` for its compositions (`Sum`, `Layered`),
+    /// whose recursive evaluation does not inline into the 16-lane kernel.
+    #[inline]
+    fn explicit_lanes(&self) -> bool {
+        Self::EXPLICIT_LANES
+    }
 }
 
 /// `x` on `L` (through `f64`: exact for `f32` and `f64` sources on a type of at least the

@@ -222,7 +222,7 @@ where
     B: BatchBrdf<N>,
     E: BatchBrdf<N>,
 {
-    assert!(E::HARDWARE_ESTIMATES && !B::HARDWARE_ESTIMATES);
+    assert!(E::EXPLICIT_LANES && !B::EXPLICIT_LANES);
     let d = pairs(n);
     let wi = Directions::new(&d[0], &d[1], &d[2]);
     let wo = Directions::new(&d[3], &d[4], &d[5]);

@@ -162,6 +162,22 @@ macro_rules! models {
 
         impl<S: Scalar> Splat for Material<S> {
             type On<L: Real> = Material<L>;
+            /// The batch path's AVX-512 kernel runs a material on 16 explicit lanes: one
+            /// `match` per 16 evaluations instead of a `match` per pair that keeps LLVM from
+            /// vectorizing (measured on an Intel Xeon: a gold Cook-Torrance material 16 →
+            /// 318 M/s, Lambert 305 M/s → 1.2 G/s; README, Performance).
+            const EXPLICIT_LANES: bool = true;
+            /// `false` for `Sum` and `Layered`: their evaluation recurses into `Material`,
+            /// which cannot inline into the 16-lane kernel (out of line, its lane
+            /// operations would be calls).
+            #[inline]
+            fn explicit_lanes(&self) -> bool {
+                match self {
+                    #[cfg(feature = "alloc")]
+                    Material::Sum(_) | Material::Layered(_) => false,
+                    _ => true,
+                }
+            }
             fn splat<L: Real>(&self) -> Material<L> {
                 match self {
                     $($( Material::$v(m) => Material::$v(m.splat()), )?)*
@@ -177,7 +193,9 @@ macro_rules! models {
         // the model's own (tests/material.rs checks the bits).
         #[deny(clippy::missing_trait_methods)]
         impl<R: Real> Brdf<R, 3> for Material<R> {
-            #[inline]
+            // Always inlined: in the batch path's 16-lane AVX-512 kernel an out-of-line
+            // `eval` would be compiled without AVX-512 (measured 10.7 instead of 318 M/s).
+            #[inline(always)]
             fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; 3] {
                 match self {
                     $($( Material::$v(m) => m.eval(wi, wo), )?)*

@@ -166,7 +166,7 @@ impl<R: Real, const N: usize, S: SqrtFn> ClassicBlinnPhong<R, N, S> {
 }
 
 impl<T: Scalar, const N: usize, S: SqrtFn> Splat for ClassicBlinnPhong<T, N, S> {
-    const HARDWARE_ESTIMATES: bool = S::HARDWARE_ESTIMATES;
+    const EXPLICIT_LANES: bool = S::HARDWARE_ESTIMATES;
     type On<L: Real> = ClassicBlinnPhong<L, N, S>;
     #[inline]
     fn splat<L: Real>(&self) -> ClassicBlinnPhong<L, N, S> {

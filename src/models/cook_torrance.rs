@@ -177,10 +177,8 @@ where
 }
 
 impl<R, D: Splat, F: Splat, G: Splat, S: SqrtFn> Splat for CookTorrance<R, D, F, G, S> {
-    const HARDWARE_ESTIMATES: bool = S::HARDWARE_ESTIMATES
-        || D::HARDWARE_ESTIMATES
-        || F::HARDWARE_ESTIMATES
-        || G::HARDWARE_ESTIMATES;
+    const EXPLICIT_LANES: bool =
+        S::HARDWARE_ESTIMATES || D::EXPLICIT_LANES || F::EXPLICIT_LANES || G::EXPLICIT_LANES;
     type On<L: Real> = CookTorrance<L, D::On<L>, F::On<L>, G::On<L>, S>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {

@@ -92,7 +92,11 @@ impl Properties {
 }
 
 impl<A: Splat, B: Splat> Splat for Sum<A, B> {
-    const HARDWARE_ESTIMATES: bool = A::HARDWARE_ESTIMATES || B::HARDWARE_ESTIMATES;
+    const EXPLICIT_LANES: bool = A::EXPLICIT_LANES || B::EXPLICIT_LANES;
+    #[inline]
+    fn explicit_lanes(&self) -> bool {
+        self.a.explicit_lanes() || self.b.explicit_lanes()
+    }
     type On<L: Real> = Sum<A::On<L>, B::On<L>>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {
@@ -170,8 +174,11 @@ impl<D, S, F> Layered<D, S, F> {
 }
 
 impl<D: Splat, S: Splat, F: Splat> Splat for Layered<D, S, F> {
-    const HARDWARE_ESTIMATES: bool =
-        D::HARDWARE_ESTIMATES || S::HARDWARE_ESTIMATES || F::HARDWARE_ESTIMATES;
+    const EXPLICIT_LANES: bool = D::EXPLICIT_LANES || S::EXPLICIT_LANES || F::EXPLICIT_LANES;
+    #[inline]
+    fn explicit_lanes(&self) -> bool {
+        self.base.explicit_lanes() || self.coat.explicit_lanes() || self.fresnel.explicit_lanes()
+    }
     type On<L: Real> = Layered<D::On<L>, S::On<L>, F::On<L>>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {

@@ -748,7 +748,11 @@ impl<M, R: Real, const N: usize> KullaConty<M, R, N> {
 }
 
 impl<M: Splat, S: Scalar, const N: usize> Splat for KullaConty<M, S, N> {
-    const HARDWARE_ESTIMATES: bool = M::HARDWARE_ESTIMATES;
+    const EXPLICIT_LANES: bool = M::EXPLICIT_LANES;
+    #[inline]
+    fn explicit_lanes(&self) -> bool {
+        self.model.explicit_lanes()
+    }
     type On<L: Real> = KullaConty<M::On<L>, L, N>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {
@@ -933,7 +937,11 @@ impl<M, R: Real, const N: usize> Turquin<M, R, N> {
 }
 
 impl<M: Splat, S: Scalar, const N: usize> Splat for Turquin<M, S, N> {
-    const HARDWARE_ESTIMATES: bool = M::HARDWARE_ESTIMATES;
+    const EXPLICIT_LANES: bool = M::EXPLICIT_LANES;
+    #[inline]
+    fn explicit_lanes(&self) -> bool {
+        self.model.explicit_lanes()
+    }
     type On<L: Real> = Turquin<M::On<L>, L, N>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {

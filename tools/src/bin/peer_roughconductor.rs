@@ -63,7 +63,7 @@ impl<R: Real, B: Brdf<R, 3>> Brdf<R, 3> for TimesCosThetaI<B> {
 impl<B: Splat> Splat for TimesCosThetaI<B> {
     type On<L: Real> = TimesCosThetaI<B::On<L>>;
     // A wrapper forwards its model's choice, or batch::eval would not see it.
-    const HARDWARE_ESTIMATES: bool = B::HARDWARE_ESTIMATES;
+    const EXPLICIT_LANES: bool = B::EXPLICIT_LANES;
     fn splat<L: Real>(&self) -> Self::On<L> {
         TimesCosThetaI(self.0.splat())
     }
