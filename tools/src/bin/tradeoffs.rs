@@ -1278,15 +1278,48 @@ fn sqrt_models_table() -> Table {
         batch::Directions::new(&cols[3], &cols[4], &cols[5]),
     );
     let isa = batch::Isa::detect();
+    // Every pair of the direction set, for the `HardwareEstimate` rows' batch output.
+    let all: [Vec<f32>; 6] = core::array::from_fn(|c| {
+        d.p32
+            .iter()
+            .map(|(a, b)| [a.x, a.y, a.z, b.x, b.y, b.z][c])
+            .collect()
+    });
+    let (ai, ao) = (
+        batch::Directions::new(&all[0], &all[1], &all[2]),
+        batch::Directions::new(&all[3], &all[4], &all[5]),
+    );
     let mut rows = Vec::new();
     type P = (Vec3<f32>, Vec3<f32>);
-    // One model: its exact and Newton forms at f32, the exact one at f64.
+    // One model: its exact and Newton forms at f32, the exact one at f64, and on AVX-512
+    // CPUs its `HardwareEstimate` form in the batch (exact on scalars, so the error is the
+    // batch output's).
     macro_rules! rows_for {
         ($label:expr, $exact32:expr, $exact64:expr, [$($p:ty),*]) => {{
             let exact32 = $exact32;
             let exact64 = $exact64;
             let r = model_error(&format!("{}, `ExactSqrt` f32", $label), "`ExactSqrt` f64", &exact32, &exact64, d);
             rows.push(r);
+            let avx = batch::Isa::Avx512;
+            if avx.is_available() {
+                let fast32 = exact32.with_sqrt::<HardwareEstimate>();
+                let mut out = vec![0.0f32; d.p32.len()];
+                batch::eval_with(avx, &fast32, ai, ao, [&mut out]).unwrap();
+                let mut r = values_error(
+                    &format!("{}, `HardwareEstimate` f32, batch (Avx512)", $label),
+                    "`ExactSqrt` f64",
+                    |k| out[k],
+                    &exact64,
+                    d,
+                );
+                let (mut oa, mut ob) = (vec![0.0f32; N_TIME], vec![0.0f32; N_TIME]);
+                r.cost = Some(time_pair(
+                    N_TIME,
+                    || batch::eval_with(avx, black_box(&exact32), wi, wo, [&mut oa]).unwrap(),
+                    || batch::eval_with(avx, black_box(&fast32), wi, wo, [&mut ob]).unwrap(),
+                ));
+                rows.push(r);
+            }
             $({
                 let fast32 = exact32.with_sqrt::<$p>();
                 let mut r = model_error(
@@ -1349,68 +1382,6 @@ fn sqrt_models_table() -> Table {
         ),
         [NewtonSqrt<2>, NewtonSqrt<3>]
     );
-    // `HardwareEstimate`: exact on scalars, so its error is the batch's on AVX-512.
-    if batch::Isa::Avx512.is_available() {
-        let all: [Vec<f32>; 6] = core::array::from_fn(|c| {
-            d.p32
-                .iter()
-                .map(|(a, b)| [a.x, a.y, a.z, b.x, b.y, b.z][c])
-                .collect()
-        });
-        let (ai, ao) = (
-            batch::Directions::new(&all[0], &all[1], &all[2]),
-            batch::Directions::new(&all[3], &all[4], &all[5]),
-        );
-        macro_rules! estimate_row {
-            ($label:expr, $exact32:expr, $exact64:expr) => {{
-                let (exact32, exact64) = ($exact32, $exact64);
-                let fast32 = exact32.with_sqrt::<HardwareEstimate>();
-                let avx = batch::Isa::Avx512;
-                let mut out = vec![0.0f32; d.p32.len()];
-                batch::eval_with(avx, &fast32, ai, ao, [&mut out]).unwrap();
-                let mut r = values_error(
-                    &format!("{}, `HardwareEstimate` f32, batch (Avx512)", $label),
-                    "`ExactSqrt` f64",
-                    |k| out[k],
-                    &exact64,
-                    d,
-                );
-                let (mut oa, mut ob) = (vec![0.0f32; N_TIME], vec![0.0f32; N_TIME]);
-                r.cost = Some(time_pair(
-                    N_TIME,
-                    || batch::eval_with(avx, black_box(&exact32), wi, wo, [&mut oa]).unwrap(),
-                    || batch::eval_with(avx, black_box(&fast32), wi, wo, [&mut ob]).unwrap(),
-                ));
-                rows.push(r);
-            }};
-        }
-        estimate_row!(
-            "Cook-Torrance GGX α = 0.3, Schlick, correlated Smith",
-            CookTorrance::new(
-                GgxIsotropic::<f32>::new(0.3).unwrap(),
-                Schlick::<f32, 1>::new([0.04]).unwrap(),
-                SmithHeightCorrelated,
-            ),
-            CookTorrance::new(
-                GgxIsotropic::<f64>::new(0.3).unwrap(),
-                Schlick::<f64, 1>::new([0.04]).unwrap(),
-                SmithHeightCorrelated,
-            )
-        );
-        estimate_row!(
-            "Cook-Torrance Beckmann α = 0.3, dielectric η = 1.5, separable Smith",
-            CookTorrance::new(
-                Beckmann::<f32>::new(0.3).unwrap(),
-                Dielectric::<f32>::new(1.5).unwrap(),
-                SmithSeparable,
-            ),
-            CookTorrance::new(
-                Beckmann::<f64>::new(0.3).unwrap(),
-                Dielectric::<f64>::new(1.5).unwrap(),
-                SmithSeparable,
-            )
-        );
-    }
     for s in [16.0, 256.0, 1e4] {
         rows_for!(
             format!("engine Blinn-Phong s = {s}"),
