@@ -25,21 +25,22 @@
 //!   `tests/models.rs` but Kajiya-Kay (64: its `pow` with exponents up to 2·10⁴ amplifies
 //!   them), and 4·10⁻⁷ relative on the batch tests' workloads.
 //!
-//! **Explicit lanes.** Two kinds of model run differently on [`Isa::Avx512`] in
-//! [`eval_with`], [`eval`] and [`eval_glam`] ([`Splat::EXPLICIT_LANES`]): on explicit 16-lane
-//! AVX-512 registers, 16 pairs per iteration and the remainder under a lane mask, every
-//! operation the one of [`F32Fma`] (so `eval` on the [`F32Fma`] form still gives the bits),
-//! except that
+//! **Explicit lanes.** Two kinds of model run differently on the FMA instruction sets in
+//! [`eval_with`], [`eval`] and [`eval_glam`] ([`Splat::EXPLICIT_LANES`]): on explicit
+//! registers of lanes (16 on [`Isa::Avx512`], 8 on [`Isa::Avx2Fma`]), a register of pairs per
+//! iteration and the remainder under a lane mask, every operation the one of [`F32Fma`] (so
+//! `eval` on the [`F32Fma`] form still gives the bits), except that
 //!
 //! * a model that takes a square root or division through [`crate::fast::HardwareEstimate`]
-//!   gets `vrsqrt14ps` / `vrcp14ps` with one refinement step there (each within 1 ULP; LLVM
-//!   does not vectorize the scalar estimate instructions): results within a few ULP of the
-//!   exact policy (`tests/batch.rs`: 1e-6 relative), not bit-identical to any `eval`. On the
-//!   other instruction sets (and in the pipelined and sampling loops) the policy is the
-//!   exact one, bit for bit;
+//!   gets `vrsqrt14ps` / `vrcp14ps` with one refinement step on [`Isa::Avx512`] (each within
+//!   1 ULP; LLVM does not vectorize the scalar estimate instructions): results within a few
+//!   ULP of the exact policy (`tests/batch.rs`: 1e-6 relative), not bit-identical to any
+//!   `eval`. On the other instruction sets (and in the pipelined and sampling loops) the
+//!   policy is the exact one, bit for bit;
 //! * a [`crate::material::Material`] (not its `Sum` and `Layered` compositions) runs there
-//!   because its per-call `match` keeps LLVM from vectorizing the one-lane loop: on 16 lanes
-//!   it is one branch per 16 evaluations (bit for bit the [`F32Fma`] form).
+//!   because its per-call `match` keeps LLVM from vectorizing the one-lane loop: on a
+//!   register of lanes it is one branch per 8 or 16 evaluations (bit for bit the [`F32Fma`]
+//!   form).
 //!
 //! A wrapper model of your own forwards the flag in its `Splat` impl
 //! (`const EXPLICIT_LANES: bool = B::EXPLICIT_LANES;` and `explicit_lanes`), or it runs on
@@ -57,7 +58,7 @@
 use core::marker::PhantomData;
 
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
-use crate::real::zmm::Zmm;
+use crate::real::lanes::{Ymm, Zmm};
 use crate::real::{F32Fma, F32FmaSharedDiv, Splat};
 use crate::sampling::SampleBrdf;
 use crate::{Real, Vec3, models::Brdf};
@@ -185,14 +186,14 @@ impl core::error::Error for Unavailable {}
 /// its [`F32Fma`] and [`F32FmaSharedDiv`] forms (for the FMA loops, see [`shares_divisions`]).
 ///
 /// Implemented for every `B: Brdf<f32, N> + Splat` whose forms on the kernels' number types
-/// ([`F32Fma`], [`F32FmaSharedDiv`] and the crate-private 16-lane AVX-512 type of the
-/// hardware estimates) are models on those types — every model of this crate, and a model
+/// ([`F32Fma`], [`F32FmaSharedDiv`] and the crate-private explicit-lane types of AVX-512 and
+/// AVX2) are models on those types — every model of this crate, and a model
 /// of your own once it is generic over [`Real`] and implements [`Splat`] (see its example).
 ///
 /// In generic code, bound the composed model (`CookTorrance<f32, D, F, G>: BatchBrdf<3>`)
-/// rather than each part's forms: the AVX-512 type cannot be named outside the crate.
+/// rather than each part's forms: the explicit-lane types cannot be named outside the crate.
 pub trait BatchBrdf<const N: usize>: Brdf<f32, N> + wide_form::WideForm<N> {
-    /// Whether [`Isa::Avx512`] may run the model on explicit 16-lane registers
+    /// Whether the FMA kernels may run the model on explicit registers of lanes
     /// ([`Splat::EXPLICIT_LANES`]).
     const EXPLICIT_LANES: bool;
     /// Whether it does for this value ([`Splat::explicit_lanes`]).
@@ -232,8 +233,8 @@ where
     }
 }
 
-/// The model on the explicit AVX-512 lanes (crate-private: that number type may exist only
-/// inside the AVX-512 kernel). Every `Splat` model whose form on any [`Real`] is a model
+/// The model on the explicit lanes of AVX-512 and AVX2 (crate-private: those number types may
+/// exist only inside their kernels). Every `Splat` model whose form on any [`Real`] is a model
 /// has it.
 mod wide_form {
     use crate::real::Splat;
@@ -241,20 +242,30 @@ mod wide_form {
     /// See the module docs.
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     pub trait WideForm<const N: usize> {
-        /// The same model on [`crate::real::zmm::Zmm`].
-        type Wide: crate::Brdf<crate::real::zmm::Zmm, N>;
-        /// It, constants keeping their bits.
-        fn wide(&self) -> Self::Wide;
+        /// The same model on [`crate::real::lanes::Zmm`] (16 lanes, AVX-512).
+        type Wide16: crate::Brdf<crate::real::lanes::Zmm, N>;
+        /// The same model on [`crate::real::lanes::Ymm`] (8 lanes, AVX2).
+        type Wide8: crate::Brdf<crate::real::lanes::Ymm, N>;
+        /// The 16-lane form, constants keeping their bits.
+        fn wide16(&self) -> Self::Wide16;
+        /// The 8-lane form, constants keeping their bits.
+        fn wide8(&self) -> Self::Wide8;
     }
 
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     impl<B: Splat, const N: usize> WideForm<N> for B
     where
-        B::On<crate::real::zmm::Zmm>: crate::Brdf<crate::real::zmm::Zmm, N>,
+        B::On<crate::real::lanes::Zmm>: crate::Brdf<crate::real::lanes::Zmm, N>,
+        B::On<crate::real::lanes::Ymm>: crate::Brdf<crate::real::lanes::Ymm, N>,
     {
-        type Wide = B::On<crate::real::zmm::Zmm>;
+        type Wide16 = B::On<crate::real::lanes::Zmm>;
+        type Wide8 = B::On<crate::real::lanes::Ymm>;
         #[inline]
-        fn wide(&self) -> Self::Wide {
+        fn wide16(&self) -> Self::Wide16 {
+            self.splat()
+        }
+        #[inline]
+        fn wide8(&self) -> Self::Wide8 {
             self.splat()
         }
     }
@@ -366,30 +377,36 @@ where
     }
 }
 
-/// Sixteen evaluations per iteration of `model` on explicit AVX-512 registers ([`Zmm`]),
-/// the last `n mod 16` under a lane mask: the loop of models with
-/// [`crate::fast::HardwareEstimate`]. The model comes by value, so its constants are locals
-/// that the optimizer keeps in registers across the loop.
+/// `LANES` evaluations per iteration of `model` on explicit registers ([`Zmm`], [`Ymm`]), the
+/// last `n mod LANES` under a lane mask: the loop of models with [`Splat::EXPLICIT_LANES`].
+/// The model comes by value, so its constants are locals that the optimizer keeps in
+/// registers across the loop. Inlined into the `#[target_feature]` kernels below.
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
-#[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
-fn kernel_avx512_lanes16<B: Brdf<Zmm, N>, const N: usize>(
+#[inline(always)]
+fn lanes_loop<Bk, B, const N: usize>(
     model: B,
     wi: Directions<'_>,
     wo: Directions<'_>,
     out: [&mut [f32]; N],
-) {
-    use crate::real::zmm::{ZmmMask, first_lanes, load, store};
+) where
+    Bk: crate::real::lanes::Backend,
+    B: Brdf<crate::real::lanes::Lanes<Bk>, N>,
+{
+    use crate::real::lanes::{Lanes, LanesMask, first_lanes, load, store};
     let n = checked_len(&wi, &wo, &out);
     #[inline(always)]
-    fn block<B: Brdf<Zmm, N>, const N: usize>(
+    fn block<Bk, B, const N: usize>(
         model: &B,
         wi: &Directions<'_>,
         wo: &Directions<'_>,
         out: &mut [&mut [f32]; N],
         i: usize,
-        m: ZmmMask,
-    ) {
-        // SAFETY: called only from `kernel_avx512_lanes16` (AVX-512F checked by the
+        m: LanesMask<Bk>,
+    ) where
+        Bk: crate::real::lanes::Backend,
+        B: Brdf<Lanes<Bk>, N>,
+    {
+        // SAFETY: called only from the kernels below (their features checked by the
         // dispatcher), and the mask keeps lanes `i + j < n`, within every slice.
         unsafe {
             let f = model.eval(
@@ -402,15 +419,43 @@ fn kernel_avx512_lanes16<B: Brdf<Zmm, N>, const N: usize>(
         }
     }
     let mut out = out;
-    let full = n - n % 16;
+    let lanes = Bk::LANES;
+    let full = n - n % lanes;
+    // SAFETY: as above.
+    let all = unsafe { first_lanes::<Bk>(lanes) };
     let mut i = 0;
     while i < full {
-        block(&model, &wi, &wo, &mut out, i, first_lanes(16));
-        i += 16;
+        block(&model, &wi, &wo, &mut out, i, all);
+        i += lanes;
     }
     if full < n {
-        block(&model, &wi, &wo, &mut out, full, first_lanes(n - full));
+        let tail = unsafe { first_lanes::<Bk>(n - full) };
+        block(&model, &wi, &wo, &mut out, full, tail);
     }
+}
+
+/// [`lanes_loop`] on 16 AVX-512 lanes.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
+fn kernel_avx512_lanes16<B: Brdf<Zmm, N>, const N: usize>(
+    model: B,
+    wi: Directions<'_>,
+    wo: Directions<'_>,
+    out: [&mut [f32]; N],
+) {
+    lanes_loop::<crate::real::lanes::Avx512, B, N>(model, wi, wo, out)
+}
+
+/// [`lanes_loop`] on 8 AVX2 lanes.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[target_feature(enable = "avx2,fma")]
+fn kernel_avx2_lanes8<B: Brdf<Ymm, N>, const N: usize>(
+    model: B,
+    wi: Directions<'_>,
+    wo: Directions<'_>,
+    out: [&mut [f32]; N],
+) {
+    lanes_loop::<crate::real::lanes::Avx2, B, N>(model, wi, wo, out)
 }
 
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
@@ -488,10 +533,12 @@ pub fn eval_with<B: BatchBrdf<N>, const N: usize>(
     // Only the form the FMA kernels run is built.
     let portable = PerPair::<f32, B>(brdf, PhantomData);
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
-    if B::EXPLICIT_LANES && isa == Isa::Avx512 && isa.is_available() && brdf.explicit_lanes() {
-        let wide = brdf.wide();
+    if B::EXPLICIT_LANES && isa != Isa::Portable && isa.is_available() && brdf.explicit_lanes() {
         // SAFETY: `is_available` checked at run time that the CPU has these features.
-        unsafe { kernel_avx512_lanes16(wide, wi, wo, out) };
+        match isa {
+            Isa::Avx512 => unsafe { kernel_avx512_lanes16(brdf.wide16(), wi, wo, out) },
+            _ => unsafe { kernel_avx2_lanes8(brdf.wide8(), wi, wo, out) },
+        }
         return Ok(());
     }
     if shares_divisions() {
@@ -681,7 +728,7 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
         "eval_glam: lengths differ"
     );
     let isa = Isa::detect();
-    if B::EXPLICIT_LANES && isa == Isa::Avx512 && brdf.explicit_lanes() {
+    if B::EXPLICIT_LANES && isa != Isa::Portable && brdf.explicit_lanes() {
         // The explicit 16-lane kernel takes the model by value: `eval_with` per chunk.
         glam_chunks(wi, wo, out, |i, o, s| {
             let _ = eval_with(isa, brdf, i, o, s);

@@ -54,7 +54,7 @@ pub use wide::{f32x4, f32x8, f32x16, f64x4};
 use wide::{u32x4, u32x8, u32x16, u64x4};
 
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
-pub(crate) mod zmm;
+pub(crate) mod lanes;
 
 /// A number or a SIMD register of numbers on which every formula of the crate runs.
 ///
@@ -323,7 +323,7 @@ mod sealed {
     impl Sealed for super::f32x16 {}
     impl Sealed for super::f64x4 {}
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
-    impl Sealed for super::zmm::Zmm {}
+    impl<B: super::lanes::Backend> Sealed for super::lanes::Lanes<B> {}
 }
 
 /// The IEEE 754 binary32 fields the [`Bits`] of `f32` and its lanes read and write.
@@ -994,12 +994,12 @@ pub trait Splat {
     /// The same material on `L`.
     fn splat<L: Real>(&self) -> Self::On<L>;
 
-    /// Whether [`crate::batch`] may run the material on explicit 16-lane AVX-512 registers
-    /// (on [`crate::batch::Isa::Avx512`]) instead of the one-lane [`F32Fma`] loop that LLVM
-    /// vectorizes: `true` for a model that takes a square root or division through
-    /// [`crate::fast::HardwareEstimate`] (the estimate instructions exist only there) and for
-    /// [`crate::material::Material`] (its per-call `match` keeps LLVM from vectorizing the
-    /// one-lane loop; on 16 lanes it costs one branch per 16 evaluations). `false` by
+    /// Whether [`crate::batch`] may run the material on explicit registers of lanes (16 on
+    /// [`crate::batch::Isa::Avx512`], 8 on [`crate::batch::Isa::Avx2Fma`]) instead of the
+    /// one-lane [`F32Fma`] loop that LLVM vectorizes: `true` for a model that takes a square
+    /// root or division through [`crate::fast::HardwareEstimate`] (the estimate instructions
+    /// are used on AVX-512) and for [`crate::material::Material`] (its per-call `match` keeps
+    /// LLVM from vectorizing the one-lane loop; on lanes it costs one branch per register). `false` by
     /// default; a composed model reports its parts' (`a || b`), and a wrapper of your own
     /// forwards its model's (`const EXPLICIT_LANES: bool = B::EXPLICIT_LANES;` and
     /// [`Splat::explicit_lanes`]), or the batch path runs it on the one-lane loop (exact
@@ -1008,7 +1008,7 @@ pub trait Splat {
 
     /// [`Splat::EXPLICIT_LANES`] for this value (checked once per batch call): a
     /// [`crate::material::Material`] says `false` for its compositions (`Sum`, `Layered`),
-    /// whose recursive evaluation does not inline into the 16-lane kernel.
+    /// whose recursive evaluation does not inline into the explicit-lane kernels.
     #[inline]
     fn explicit_lanes(&self) -> bool {
         Self::EXPLICIT_LANES
