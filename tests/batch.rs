@@ -267,7 +267,7 @@ where
 
 /// GGX + Schlick and the rough gold conductor with [`HardwareEstimate`] (the half vector, the
 /// final division and the conductor's roots and divisions): within 1e-6 relative of the
-/// exact policy on AVX-512 (a few ULP: each estimate is within 1 ULP, `real::zmm`'s tests),
+/// exact policy on AVX-512 (a few ULP: each estimate is within 1 ULP, `real::lanes`'s tests),
 /// bit for bit elsewhere, at lengths around the 16-lane blocks and the masked tail.
 #[test]
 fn hardware_estimates_within_a_few_ulp_of_exact() {
