@@ -606,7 +606,7 @@ fn bench_material(c: &mut Criterion) {
         &mut out,
     );
     let lambert = Lambert::<f32, 3>::new([0.2, 0.3, 0.4]).unwrap();
-    let runtime = Material::from(lambert);
+    let runtime_lambert = Material::from(lambert);
     bench_isas(
         &mut g,
         "lambert_static",
@@ -619,6 +619,42 @@ fn bench_material(c: &mut Criterion) {
     bench_isas(
         &mut g,
         "lambert_material",
+        batch::eval_with,
+        &runtime_lambert,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    // A plastic: Lambert + a GGX lobe with a dielectric's Fresnel, as the static `Sum` and
+    // as a `Sum` material of two leaf materials (explicit lanes).
+    let coat = CookTorrance::new(
+        GgxIsotropic::<f32>::new(0.2).unwrap(),
+        brdf::fresnel::Dielectric::<f32>::new(1.5)
+            .unwrap()
+            .channels::<3>(),
+        SmithHeightCorrelated,
+    );
+    let plastic = brdf::models::Sum::new(lambert, coat);
+    let runtime = Material::Sum(vec![
+        runtime_lambert,
+        Material::from(CookTorrance::new(
+            AnyNdf::from(coat.ndf),
+            AnyFresnel::from(coat.fresnel),
+            AnyMasking::from(coat.masking),
+        )),
+    ]);
+    bench_isas(
+        &mut g,
+        "plastic_static",
+        batch::eval_with,
+        &plastic,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    bench_isas(
+        &mut g,
+        "plastic_material",
         batch::eval_with,
         &runtime,
         &wi,
