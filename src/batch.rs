@@ -37,7 +37,7 @@
 //!   ULP of the exact policy (`tests/batch.rs`: 1e-6 relative), not bit-identical to any
 //!   `eval`. On the other instruction sets (and in the pipelined and sampling loops) the
 //!   policy is the exact one, bit for bit;
-//! * a [`crate::material::Material`] (not its `Sum` and `Layered` compositions) runs there
+//! * a [`crate::material::Material`] (a leaf model or a `Sum` of leaf models) runs there
 //!   because its per-call `match` keeps LLVM from vectorizing the one-lane loop: on a
 //!   register of lanes it is one branch per 8 or 16 evaluations (bit for bit the [`F32Fma`]
 //!   form).

@@ -1007,8 +1007,9 @@ pub trait Splat {
     const EXPLICIT_LANES: bool = false;
 
     /// [`Splat::EXPLICIT_LANES`] for this value (checked once per batch call): a
-    /// [`crate::material::Material`] says `false` for its compositions (`Sum`, `Layered`),
-    /// whose recursive evaluation does not inline into the explicit-lane kernels.
+    /// [`crate::material::Material`] says `false` for `Layered` and for a `Sum` holding a
+    /// composition, whose recursive evaluation does not inline into the explicit-lane
+    /// kernels.
     #[inline]
     fn explicit_lanes(&self) -> bool {
         Self::EXPLICIT_LANES
