@@ -434,6 +434,22 @@ fn lanes_loop<Bk, B, const N: usize>(
     }
 }
 
+/// A model by reference, for a kernel that takes its model by value (the chunks of
+/// [`eval_glam`] share one lanes form).
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+struct ByRef<'a, B>(&'a B);
+
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+impl<R: Real, B: Brdf<R, N>, const N: usize> Brdf<R, N> for ByRef<'_, B> {
+    #[inline(always)]
+    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
+        self.0.eval(wi, wo)
+    }
+    fn properties(&self) -> crate::models::Properties {
+        self.0.properties()
+    }
+}
+
 /// [`lanes_loop`] on 16 AVX-512 lanes.
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
 #[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
@@ -728,11 +744,25 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
         "eval_glam: lengths differ"
     );
     let isa = Isa::detect();
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
     if B::EXPLICIT_LANES && isa != Isa::Portable && brdf.explicit_lanes() {
-        // The explicit 16-lane kernel takes the model by value: `eval_with` per chunk.
-        glam_chunks(wi, wo, out, |i, o, s| {
-            let _ = eval_with(isa, brdf, i, o, s);
-        });
+        // The lanes form once per call (splatting a `Sum` material allocates), each chunk's
+        // kernel borrowing it.
+        // SAFETY: `Isa::detect` returns an available instruction set.
+        match isa {
+            Isa::Avx512 => {
+                let wide = brdf.wide16();
+                glam_chunks(wi, wo, out, |i, o, s| unsafe {
+                    kernel_avx512_lanes16(ByRef(&wide), i, o, s)
+                });
+            }
+            _ => {
+                let wide = brdf.wide8();
+                glam_chunks(wi, wo, out, |i, o, s| unsafe {
+                    kernel_avx2_lanes8(ByRef(&wide), i, o, s)
+                });
+            }
+        }
         return;
     }
     // The kernels' form once per call (only the one they run), not per chunk.
