@@ -565,8 +565,9 @@ fn bench_multiscatter(c: &mut Criterion) {
 }
 
 /// The run-time `Material` against the static model it holds (the rough gold conductor of
-/// `rough_conductor`, without the cosine; Lambert), through `batch::eval_with`: on AVX-512
-/// the material runs on explicit 16-lane registers (one `match` per 16 pairs).
+/// `rough_conductor`, without the cosine; Lambert; a plastic as a sum and as a layered
+/// model), through `batch::eval_with`: the material matches on its variant once per call
+/// and runs the model it holds (a Cook-Torrance with run-time parts on explicit lanes).
 fn bench_material(c: &mut Criterion) {
     use brdf::fresnel::AnyFresnel;
     use brdf::masking::AnyMasking;
@@ -626,7 +627,7 @@ fn bench_material(c: &mut Criterion) {
         &mut out,
     );
     // A plastic: Lambert + a GGX lobe with a dielectric's Fresnel, as the static `Sum` and
-    // as a `Sum` material of two leaf materials (explicit lanes).
+    // as a `Sum` material of two leaf materials (each term over blocks, then added).
     let coat = CookTorrance::new(
         GgxIsotropic::<f32>::new(0.2).unwrap(),
         brdf::fresnel::Dielectric::<f32>::new(1.5)
@@ -634,9 +635,32 @@ fn bench_material(c: &mut Criterion) {
             .channels::<3>(),
         SmithHeightCorrelated,
     );
+    let coat_material = Material::from(CookTorrance::new(
+        AnyNdf::from(coat.ndf),
+        AnyFresnel::from(coat.fresnel),
+        AnyMasking::from(coat.masking),
+    ));
+    bench_isas(
+        &mut g,
+        "coat_static",
+        batch::eval_with,
+        &coat,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    bench_isas(
+        &mut g,
+        "coat_material",
+        batch::eval_with,
+        &coat_material,
+        &wi,
+        &wo,
+        &mut out,
+    );
     let plastic = brdf::models::Sum::new(lambert, coat);
     let runtime = Material::Sum(vec![
-        runtime_lambert,
+        runtime_lambert.clone(),
         Material::from(CookTorrance::new(
             AnyNdf::from(coat.ndf),
             AnyFresnel::from(coat.fresnel),
@@ -655,6 +679,39 @@ fn bench_material(c: &mut Criterion) {
     bench_isas(
         &mut g,
         "plastic_material",
+        batch::eval_with,
+        &runtime,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    // The same parts layered: the coat over the Lambert base, seen through the coat's
+    // dielectric Fresnel, static and as a `Layered` material (parts in passes over blocks).
+    let dielectric = brdf::fresnel::Dielectric::<f32>::new(1.5)
+        .unwrap()
+        .channels::<3>();
+    let layered = brdf::models::Layered::new(lambert, coat, dielectric);
+    let runtime = Material::Layered(Box::new(brdf::models::Layered::new(
+        runtime_lambert,
+        Material::from(CookTorrance::new(
+            AnyNdf::from(coat.ndf),
+            AnyFresnel::from(coat.fresnel),
+            AnyMasking::from(coat.masking),
+        )),
+        AnyFresnel::from(dielectric),
+    )));
+    bench_isas(
+        &mut g,
+        "layered_static",
+        batch::eval_with,
+        &layered,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    bench_isas(
+        &mut g,
+        "layered_material",
         batch::eval_with,
         &runtime,
         &wi,

@@ -37,14 +37,17 @@
 //!   ULP of the exact policy (`tests/batch.rs`: 1e-6 relative), not bit-identical to any
 //!   `eval`. On the other instruction sets (and in the pipelined and sampling loops) the
 //!   policy is the exact one, bit for bit;
-//! * a [`crate::material::Material`] (a leaf model or a `Sum` of leaf models) runs there
-//!   because its per-call `match` keeps LLVM from vectorizing the one-lane loop: on a
-//!   register of lanes it is one branch per 8 or 16 evaluations (bit for bit the [`F32Fma`]
-//!   form).
 //!
 //! A wrapper model of your own forwards the flag in its `Splat` impl
-//! (`const EXPLICIT_LANES: bool = B::EXPLICIT_LANES;` and `explicit_lanes`), or it runs on
-//! the one-lane loop.
+//! (`const EXPLICIT_LANES: bool = B::EXPLICIT_LANES;`), or it runs on the one-lane loop.
+//!
+//! **Materials chosen at run time.** A model may evaluate a batch itself
+//! ([`Brdf::eval_batch`], tried first). A [`crate::material::Material`] does: it matches on
+//! its variant once per call and runs the concrete model through [`eval_with`], so it gets
+//! that model's loop and bits on every instruction set (a `match` per pair would keep LLVM
+//! from vectorizing). A `Sum` or `Layered` material runs its parts the same way over blocks
+//! of [`BLOCK`] pairs and combines them in a vectorized pass, with the additions and the
+//! fused multiply-add of its `eval` (so the bits of its static counterpart).
 //!
 //! Bodies that call a library transcendental (`powf`, `exp` from `std`/`libm`) do not
 //! vectorize this way; the models offer polynomial alternatives (see [`crate::fast`]) for
@@ -196,8 +199,6 @@ pub trait BatchBrdf<const N: usize>: Brdf<f32, N> + wide_form::WideForm<N> {
     /// Whether the FMA kernels may run the model on explicit registers of lanes
     /// ([`Splat::EXPLICIT_LANES`]).
     const EXPLICIT_LANES: bool;
-    /// Whether it does for this value ([`Splat::explicit_lanes`]).
-    fn explicit_lanes(&self) -> bool;
     /// The same model on [`F32Fma`].
     type Fused: Brdf<F32Fma, N>;
     /// The same model on [`F32FmaSharedDiv`].
@@ -217,10 +218,6 @@ where
     B: wide_form::WideForm<N>,
 {
     const EXPLICIT_LANES: bool = <B as Splat>::EXPLICIT_LANES;
-    #[inline]
-    fn explicit_lanes(&self) -> bool {
-        <B as Splat>::EXPLICIT_LANES && Splat::explicit_lanes(self)
-    }
     type Fused = B::On<F32Fma>;
     type SharedDiv = B::On<F32FmaSharedDiv>;
     #[inline]
@@ -362,6 +359,129 @@ where
     }
 }
 
+/// [`crate::models::layered::layered_combine`] per pair on the one-lane type `K`: the base's
+/// values from `base`, the coat's from `out`, overwritten with the layered value.
+#[cfg(feature = "alloc")]
+struct LayeredCombine<'a, K, F, const N: usize> {
+    fresnel: &'a F,
+    base: [&'a [f32]; N],
+    _k: PhantomData<K>,
+}
+
+#[cfg(feature = "alloc")]
+impl<K, F, const N: usize> Loop<N> for LayeredCombine<'_, K, F, N>
+where
+    K: Real<Scalar = f32, Mask = bool>,
+    F: crate::fresnel::FresnelTerm<K, N>,
+{
+    #[inline(always)]
+    fn run(&self, wi: Directions<'_>, wo: Directions<'_>, out: [&mut [f32]; N]) {
+        let n = checked_len(&wi, &wo, &out);
+        assert!(self.base.iter().all(|b| b.len() == n));
+        let (ix, iy, iz) = (&wi.x[..n], &wi.y[..n], &wi.z[..n]);
+        let (ox, oy, oz) = (&wo.x[..n], &wo.y[..n], &wo.z[..n]);
+        let base = self.base.map(|b| &b[..n]);
+        let out = out.map(|c| &mut c[..n]);
+        for i in 0..n {
+            let f = crate::models::layered::layered_combine(
+                self.fresnel,
+                Vec3::new(K::splat(ix[i]), K::splat(iy[i]), K::splat(iz[i])),
+                Vec3::new(K::splat(ox[i]), K::splat(oy[i]), K::splat(oz[i])),
+                core::array::from_fn(|c| K::splat(base[c][i])),
+                core::array::from_fn(|c| K::splat(out[c][i])),
+            );
+            for c in 0..N {
+                out[c][i] = f[c].lane(0);
+            }
+        }
+    }
+}
+
+/// `out[c][i] = a[c][i] + b[c][i]`, or `out[c][i] += b[c][i]` without `a`: one more term of
+/// a sum, added in a vectorized loop.
+#[cfg(feature = "alloc")]
+struct Add<'a, const N: usize> {
+    a: Option<[&'a [f32]; N]>,
+    b: [&'a [f32]; N],
+}
+
+#[cfg(feature = "alloc")]
+impl<const N: usize> Loop<N> for Add<'_, N> {
+    #[inline(always)]
+    fn run(&self, wi: Directions<'_>, wo: Directions<'_>, out: [&mut [f32]; N]) {
+        let n = checked_len(&wi, &wo, &out);
+        for (c, o) in out.into_iter().enumerate() {
+            let (o, b) = (&mut o[..n], &self.b[c][..n]);
+            match self.a {
+                Some(a) => {
+                    let a = &a[c][..n];
+                    for i in 0..n {
+                        o[i] = a[i] + b[i];
+                    }
+                }
+                None => o.iter_mut().zip(b).for_each(|(o, b)| *o += b),
+            }
+        }
+    }
+}
+
+/// `out = a + b` channel by channel, or `out += b` without `a` (`f32` additions, the same
+/// in every loop), compiled for `isa` (available; the slices have the length of `wi`: the
+/// caller checked).
+#[cfg(feature = "alloc")]
+pub(crate) fn add_with<const N: usize>(
+    isa: Isa,
+    wi: Directions<'_>,
+    wo: Directions<'_>,
+    a: Option<[&[f32]; N]>,
+    b: [&[f32]; N],
+    out: [&mut [f32]; N],
+) {
+    let add = Add { a, b };
+    let _ = dispatch(isa, &add, &add, wi, wo, out);
+}
+
+/// Overwrites `out` (the coat's values `S(wi, wo)`) with a [`crate::models::Layered`]
+/// model's values, given its base's values `base`, computed with `isa` as [`eval_with`]
+/// computes the static model (the fresnel term on the form [`shares_divisions`] selects).
+/// `isa` is available and the slices have equal lengths (the caller checked).
+#[cfg(feature = "alloc")]
+pub(crate) fn layered_combine_with<F, const N: usize>(
+    isa: Isa,
+    fresnel: &F,
+    wi: Directions<'_>,
+    wo: Directions<'_>,
+    base: [&[f32]; N],
+    out: [&mut [f32]; N],
+) where
+    F: crate::fresnel::FresnelTerm<f32, N> + Splat,
+    F::On<F32Fma>: crate::fresnel::FresnelTerm<F32Fma, N>,
+    F::On<F32FmaSharedDiv>: crate::fresnel::FresnelTerm<F32FmaSharedDiv, N>,
+{
+    let portable = LayeredCombine::<f32, F, N> {
+        fresnel,
+        base,
+        _k: PhantomData,
+    };
+    let _ = if shares_divisions() {
+        let shared: F::On<F32FmaSharedDiv> = fresnel.splat();
+        let fused = LayeredCombine::<F32FmaSharedDiv, _, N> {
+            fresnel: &shared,
+            base,
+            _k: PhantomData,
+        };
+        dispatch(isa, &portable, &fused, wi, wo, out)
+    } else {
+        let plain: F::On<F32Fma> = fresnel.splat();
+        let fused = LayeredCombine::<F32Fma, _, N> {
+            fresnel: &plain,
+            base,
+            _k: PhantomData,
+        };
+        dispatch(isa, &portable, &fused, wi, wo, out)
+    };
+}
+
 /// The passes of [`Pipelined::eval_passes`] on the one-lane type `K`.
 struct Passes<'a, K, B>(&'a B, PhantomData<K>);
 
@@ -431,22 +551,6 @@ fn lanes_loop<Bk, B, const N: usize>(
     if full < n {
         let tail = unsafe { first_lanes::<Bk>(n - full) };
         block(&model, &wi, &wo, &mut out, full, tail);
-    }
-}
-
-/// A model by reference, for a kernel that takes its model by value (the chunks of
-/// [`eval_glam`] share one lanes form).
-#[cfg(all(feature = "std", target_arch = "x86_64"))]
-struct ByRef<'a, B>(&'a B);
-
-#[cfg(all(feature = "std", target_arch = "x86_64"))]
-impl<R: Real, B: Brdf<R, N>, const N: usize> Brdf<R, N> for ByRef<'_, B> {
-    #[inline(always)]
-    fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
-        self.0.eval(wi, wo)
-    }
-    fn properties(&self) -> crate::models::Properties {
-        self.0.properties()
     }
 }
 
@@ -533,7 +637,9 @@ fn dispatch<P: Loop<N>, F: Loop<N>, const N: usize>(
 /// Returns [`Unavailable`] if the CPU lacks `isa`. [`Isa::Portable`] results equal
 /// [`Brdf::eval`] on `brdf` bit for bit; the FMA variants equal `eval` on
 /// [`BatchBrdf::fused`] bit for bit, or on [`BatchBrdf::shared_div`] where
-/// [`shares_divisions`] (see the [module docs](self)).
+/// [`shares_divisions`] (see the [module docs](self)). A model with a batch evaluation of
+/// its own ([`Brdf::eval_batch`], tried first: a run-time
+/// [`Material`](crate::material::Material)) gives the results of the model it runs.
 ///
 /// # Panics
 ///
@@ -546,10 +652,18 @@ pub fn eval_with<B: BatchBrdf<N>, const N: usize>(
     wo: Directions<'_>,
     out: [&mut [f32]; N],
 ) -> Result<(), Unavailable> {
+    if !isa.is_available() {
+        return Err(Unavailable(isa));
+    }
+    checked_len(&wi, &wo, &out);
+    let mut out = out;
+    if brdf.eval_batch(isa, wi, wo, &mut out) {
+        return Ok(());
+    }
     // Only the form the FMA kernels run is built.
     let portable = PerPair::<f32, B>(brdf, PhantomData);
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
-    if B::EXPLICIT_LANES && isa != Isa::Portable && isa.is_available() && brdf.explicit_lanes() {
+    if B::EXPLICIT_LANES && isa != Isa::Portable {
         // SAFETY: `is_available` checked at run time that the CPU has these features.
         match isa {
             Isa::Avx512 => unsafe { kernel_avx512_lanes16(brdf.wide16(), wi, wo, out) },
@@ -744,43 +858,12 @@ pub fn eval_glam<B: BatchBrdf<N>, const N: usize>(
         "eval_glam: lengths differ"
     );
     let isa = Isa::detect();
-    #[cfg(all(feature = "std", target_arch = "x86_64"))]
-    if B::EXPLICIT_LANES && isa != Isa::Portable && brdf.explicit_lanes() {
-        // The lanes form once per call (splatting a `Sum` material allocates), each chunk's
-        // kernel borrowing it.
-        // SAFETY: `Isa::detect` returns an available instruction set.
-        match isa {
-            Isa::Avx512 => {
-                let wide = brdf.wide16();
-                glam_chunks(wi, wo, out, |i, o, s| unsafe {
-                    kernel_avx512_lanes16(ByRef(&wide), i, o, s)
-                });
-            }
-            _ => {
-                let wide = brdf.wide8();
-                glam_chunks(wi, wo, out, |i, o, s| unsafe {
-                    kernel_avx2_lanes8(ByRef(&wide), i, o, s)
-                });
-            }
-        }
-        return;
-    }
-    // The kernels' form once per call (only the one they run), not per chunk.
-    let portable = PerPair::<f32, B>(brdf, PhantomData);
+    // `eval_with` per chunk: the model's forms are copies of its constants (a material
+    // is not copied at all: its `eval_batch` hands the variant on), cheap beside 256 pairs.
     // The detected variant is available by construction.
-    if shares_divisions() {
-        let shared = brdf.shared_div();
-        let shared = PerPair::<F32FmaSharedDiv, B::SharedDiv>(&shared, PhantomData);
-        glam_chunks(wi, wo, out, |i, o, s| {
-            let _ = dispatch(isa, &portable, &shared, i, o, s);
-        });
-    } else {
-        let fused = brdf.fused();
-        let fused = PerPair::<F32Fma, B::Fused>(&fused, PhantomData);
-        glam_chunks(wi, wo, out, |i, o, s| {
-            let _ = dispatch(isa, &portable, &fused, i, o, s);
-        });
-    }
+    glam_chunks(wi, wo, out, |i, o, s| {
+        let _ = eval_with(isa, brdf, i, o, s);
+    });
 }
 
 /// The chunked transposition of [`eval_glam`] around `run` (a batch loop on one chunk).

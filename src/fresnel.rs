@@ -1605,6 +1605,10 @@ impl<R> From<Dielectric<R>> for AnyFresnel<R> {
 }
 
 impl<S: Scalar> Splat for AnyFresnel<S> {
+    /// `true`: a `match` on the variant per pair keeps LLVM from vectorizing the batch
+    /// path's one-lane loop; on explicit lanes it is one branch per register of 8 or 16
+    /// pairs (the same operations, so the bits of [`crate::real::F32Fma`]).
+    const EXPLICIT_LANES: bool = true;
     type On<L: Real> = AnyFresnel<L>;
     #[inline]
     fn splat<L: Real>(&self) -> AnyFresnel<L> {

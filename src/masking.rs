@@ -669,7 +669,17 @@ impl AnyMasking {
     ];
 }
 
-crate::real::splat_as_itself!(AnyMasking);
+impl crate::real::Splat for AnyMasking {
+    /// `true`: a `match` on the variant per pair keeps LLVM from vectorizing the batch
+    /// path's one-lane loop; on explicit lanes it is one branch per register of 8 or 16
+    /// pairs (the same operations, so the bits of [`crate::real::F32Fma`]).
+    const EXPLICIT_LANES: bool = true;
+    type On<L: Real> = AnyMasking;
+    #[inline]
+    fn splat<L: Real>(&self) -> AnyMasking {
+        *self
+    }
+}
 
 /// `on_any_masking!(self, g => g.g2(..))`: the expression on the term an [`AnyMasking`]
 /// names.

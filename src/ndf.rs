@@ -1343,6 +1343,10 @@ macro_rules! any_ndf_from {
 any_ndf_from!(Ggx, GgxIsotropic, Beckmann);
 
 impl<S: Scalar> Splat for AnyNdf<S> {
+    /// `true`: a `match` on the variant per pair keeps LLVM from vectorizing the batch
+    /// path's one-lane loop; on explicit lanes it is one branch per register of 8 or 16
+    /// pairs (the same operations, so the bits of [`crate::real::F32Fma`]).
+    const EXPLICIT_LANES: bool = true;
     type On<L: Real> = AnyNdf<L>;
     #[inline]
     fn splat<L: Real>(&self) -> AnyNdf<L> {

@@ -998,22 +998,11 @@ pub trait Splat {
     /// [`crate::batch::Isa::Avx512`], 8 on [`crate::batch::Isa::Avx2Fma`]) instead of the
     /// one-lane [`F32Fma`] loop that LLVM vectorizes: `true` for a model that takes a square
     /// root or division through [`crate::fast::HardwareEstimate`] (the estimate instructions
-    /// are used on AVX-512) and for [`crate::material::Material`] (its per-call `match` keeps
-    /// LLVM from vectorizing the one-lane loop; on lanes it costs one branch per register). `false` by
-    /// default; a composed model reports its parts' (`a || b`), and a wrapper of your own
-    /// forwards its model's (`const EXPLICIT_LANES: bool = B::EXPLICIT_LANES;` and
-    /// [`Splat::explicit_lanes`]), or the batch path runs it on the one-lane loop (exact
-    /// operations, and slow for a `Material`).
+    /// are used on AVX-512). `false` by default; a composed model reports its parts'
+    /// (`a || b`), and a wrapper of your own forwards its model's
+    /// (`const EXPLICIT_LANES: bool = B::EXPLICIT_LANES;`), or the batch path runs it on the
+    /// one-lane loop (exact operations instead of the estimates).
     const EXPLICIT_LANES: bool = false;
-
-    /// [`Splat::EXPLICIT_LANES`] for this value (checked once per batch call): a
-    /// [`crate::material::Material`] says `false` for `Layered` and for a `Sum` holding a
-    /// composition, whose recursive evaluation does not inline into the explicit-lane
-    /// kernels.
-    #[inline]
-    fn explicit_lanes(&self) -> bool {
-        Self::EXPLICIT_LANES
-    }
 }
 
 /// `x` on `L` (through `f64`: exact for `f32` and `f64` sources on a type of at least the

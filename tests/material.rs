@@ -623,3 +623,115 @@ fn empty_sum_is_zero_and_conserving() {
     assert_eq!(p.reciprocity, Reciprocity::Reciprocal);
     assert_eq!(p.energy, Energy::Conserving);
 }
+
+/// The batch path of the compositions over several of its blocks (`batch::BLOCK` pairs,
+/// the last one partial): a material evaluates `Sum` and `Layered` in passes over blocks
+/// (each part through `eval_with`, then the additions or the layered combination), and must
+/// give the static composition's bits on every instruction set, at every pair — below the
+/// horizon too (`z ∈ [−0.2, 1]`: the layered combination masks) — and `+0` for an empty sum.
+#[cfg(feature = "alloc")]
+#[test]
+fn compositions_over_several_batch_blocks_equal_the_static_models_bit_for_bit() {
+    let n = 2 * batch::BLOCK + 37;
+    // Directions by warping a stratified grid (golden-ratio offsets), not by filtering.
+    let dir = |k: usize, a: f64, b: f64| {
+        let u1 = ((k as f64 + 0.5) / n as f64 + a).fract();
+        let u2 = (k as f64 * 0.618_033_988_749_895 + b).fract();
+        common::to_f32(common::hemisphere(1.2 * u1 - 0.2, u2))
+    };
+    let p: Pairs = (0..n)
+        .map(|k| (dir(k, 0.0, 0.1), dir(k, 0.37, 0.6)))
+        .collect();
+    let c = |f: fn(&(Vec3<f32>, Vec3<f32>)) -> f32| p.iter().map(f).collect::<Vec<f32>>();
+    let (ix, iy, iz) = (c(|q| q.0.x), c(|q| q.0.y), c(|q| q.0.z));
+    let (ox, oy, oz) = (c(|q| q.1.x), c(|q| q.1.y), c(|q| q.1.z));
+    let (wi, wo) = (
+        Directions::new(&ix, &iy, &iz),
+        Directions::new(&ox, &oy, &oz),
+    );
+    let run = |isa: Isa, m: &dyn Fn(Isa, [&mut [f32]; 3])| {
+        let mut a = [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]];
+        let [a0, a1, a2] = &mut a;
+        m(isa, [a0, a1, a2]);
+        a
+    };
+
+    let lambert = Lambert::new([0.5, 0.4, 0.3]).unwrap();
+    let oren = OrenNayar::new([0.3; 3], 0.5).unwrap();
+    let coat = CookTorrance::new(
+        GgxIsotropic::new(0.1).unwrap(),
+        Dielectric::new(1.5).unwrap().channels(),
+        SmithHeightCorrelated,
+    );
+    let sum = Material::Sum(vec![lambert.into(), coat_material(coat), oren.into()]);
+    let layered = Material::Layered(Box::new(Layered::new(
+        Material::Sum(vec![lambert.into(), oren.into()]),
+        coat_material(coat),
+        gold().into(),
+    )));
+    let static_sum = Sum::new(Sum::new(lambert, coat), oren);
+    let static_layered = Layered::new(Sum::new(lambert, oren), coat, gold());
+    let empty = Material::Sum(Vec::new());
+    let mut checked = 0;
+    for isa in Isa::ALL.into_iter().filter(|i| i.is_available()) {
+        let pairs = [
+            (
+                "sum of 3",
+                run(isa, &|isa, o| {
+                    batch::eval_with(isa, &sum, wi, wo, o).unwrap()
+                }),
+                run(isa, &|isa, o| {
+                    batch::eval_with(isa, &static_sum, wi, wo, o).unwrap()
+                }),
+            ),
+            (
+                "layered over a sum",
+                run(isa, &|isa, o| {
+                    batch::eval_with(isa, &layered, wi, wo, o).unwrap()
+                }),
+                run(isa, &|isa, o| {
+                    batch::eval_with(isa, &static_layered, wi, wo, o).unwrap()
+                }),
+            ),
+        ];
+        for (what, a, b) in &pairs {
+            for ch in 0..3 {
+                for i in 0..n {
+                    assert_eq!(
+                        bits(a[ch][i]),
+                        bits(b[ch][i]),
+                        "{what}, {isa:?}, channel {ch}, pair {i}: {:e} vs {:e}",
+                        a[ch][i],
+                        b[ch][i]
+                    );
+                }
+            }
+            // Below the horizon the value is +0; above it, mostly positive.
+            assert!(a[0].iter().zip(&iz).all(|(v, z)| *z > 0.0 || bits(*v) == 0));
+            assert!(a[0].iter().filter(|v| **v > 0.0).count() > n / 2, "{what}");
+            checked += 1;
+        }
+        let mut z = [vec![f32::NAN; n], vec![f32::NAN; n], vec![f32::NAN; n]];
+        let [z0, z1, z2] = &mut z;
+        batch::eval_with(isa, &empty, wi, wo, [z0, z1, z2]).unwrap();
+        assert!(
+            z.iter().flatten().all(|v| bits(*v) == 0),
+            "empty sum, {isa:?}"
+        );
+    }
+    assert!(checked >= 2);
+}
+
+/// `coat` as a material with run-time parts.
+#[cfg(feature = "alloc")]
+fn coat_material<N, F>(coat: CookTorrance<f32, N, F, SmithHeightCorrelated>) -> Material<f32>
+where
+    N: Into<AnyNdf<f32>>,
+    F: Into<AnyFresnel<f32>>,
+{
+    Material::from(CookTorrance::new(
+        coat.ndf.into(),
+        coat.fresnel.into(),
+        AnyMasking::from(coat.masking),
+    ))
+}

@@ -12,7 +12,10 @@
 //! the model it holds, bit for bit (`tests/material.rs` checks every model and part on `f32`,
 //! `F32Fma`, `f32x8` and through the batch path on every instruction set). What it costs is
 //! one branch on the variant per evaluation (and one per runtime part), on a per-material
-//! constant: the same for every lane.
+//! constant: the same for every lane. Through [`crate::batch`] the branch is taken once per
+//! call ([`Brdf::eval_batch`]): the batch runs the loop of the model the variant holds, and a
+//! `Sum` or `Layered` runs its parts so and combines them (measured in the README,
+//! Performance).
 //!
 //! Build one from a model with `From`/`Into`, or from a file description with the `serde`
 //! feature (`MaterialDesc`, see below). `Sum` and `Layered` hold other materials and need
@@ -162,24 +165,6 @@ macro_rules! models {
 
         impl<S: Scalar> Splat for Material<S> {
             type On<L: Real> = Material<L>;
-            /// The batch path's FMA kernels run a material on explicit lanes: one `match`
-            /// per 8 or 16 evaluations instead of a `match` per pair that keeps LLVM from
-            /// vectorizing (measured on an Intel Xeon, a gold Cook-Torrance material: 55 →
-            /// 307 M/s on AVX2, 58 → 345 M/s on AVX-512; README, Performance).
-            const EXPLICIT_LANES: bool = true;
-            /// `false` for `Layered` and for a `Sum` with a composition among its terms:
-            /// their evaluation recurses into `Material`, which cannot inline into the
-            /// explicit-lane kernels (out of line, its lane operations would be calls).
-            #[inline]
-            fn explicit_lanes(&self) -> bool {
-                match self {
-                    #[cfg(feature = "alloc")]
-                    Material::Sum(terms) => terms.iter().all(Material::is_leaf),
-                    #[cfg(feature = "alloc")]
-                    Material::Layered(_) => false,
-                    _ => true,
-                }
-            }
             fn splat<L: Real>(&self) -> Material<L> {
                 match self {
                     $($( Material::$v(m) => Material::$v(m.splat()), )?)*
@@ -191,28 +176,29 @@ macro_rules! models {
             }
         }
 
-        impl<R: Real> Material<R> {
-            /// Whether this is one model, not a composition (`Sum`, `Layered`).
-            #[cfg(feature = "alloc")]
-            #[inline]
-            fn is_leaf(&self) -> bool {
-                match self {
+        impl Material<f32> {
+            /// [`Brdf::eval_batch`] on three channels: the variant's model through
+            /// [`crate::batch::eval_with`] (`isa` is available: the caller checked).
+            fn eval_batch_f32(
+                &self,
+                isa: crate::batch::Isa,
+                wi: crate::batch::Directions<'_>,
+                wo: crate::batch::Directions<'_>,
+                out: [&mut [f32]; 3],
+            ) {
+                let _ = match self {
+                    $($( Material::$v(m) => crate::batch::eval_with(isa, m, wi, wo, out), )?)*
                     #[cfg(feature = "alloc")]
-                    Material::Sum(_) | Material::Layered(_) => false,
-                    _ => true,
-                }
-            }
-
-            /// `eval` of a term of a `Sum`: a leaf model inlined, a composition out of line
-            /// (its evaluation recurses), so a sum of leaves inlines completely into the
-            /// explicit-lane kernels. The same operations as `Brdf::eval`, hence the bits.
-            #[cfg(feature = "alloc")]
-            #[inline(always)]
-            fn eval_term(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; 3] {
-                match self {
-                    $($( Material::$v(m) => m.eval(wi, wo), )?)*
-                    Material::Sum(_) | Material::Layered(_) => eval_composite(self, wi, wo),
-                }
+                    Material::Sum(terms) => {
+                        sum_batch(terms, isa, wi, wo, out);
+                        Ok(())
+                    }
+                    #[cfg(feature = "alloc")]
+                    Material::Layered(m) => {
+                        layered_batch(m, isa, wi, wo, out);
+                        Ok(())
+                    }
+                };
             }
         }
 
@@ -220,9 +206,7 @@ macro_rules! models {
         // the model's own (tests/material.rs checks the bits).
         #[deny(clippy::missing_trait_methods)]
         impl<R: Real> Brdf<R, 3> for Material<R> {
-            // Always inlined: in the batch path's 16-lane AVX-512 kernel an out-of-line
-            // `eval` would be compiled without AVX-512 (measured 10.7 instead of 318 M/s).
-            #[inline(always)]
+            #[inline]
             fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; 3] {
                 match self {
                     $($( Material::$v(m) => m.eval(wi, wo), )?)*
@@ -231,6 +215,28 @@ macro_rules! models {
                     #[cfg(feature = "alloc")]
                     Material::Layered(m) => m.eval(wi, wo),
                 }
+            }
+
+            /// An `f32` material evaluates a batch as the model it holds: one `match` per
+            /// call, then [`crate::batch::eval_with`] on the concrete model (its own loop and
+            /// bits; a `match` per pair would keep LLVM from vectorizing). A `Sum` or
+            /// `Layered` runs its parts so over blocks of [`crate::batch::BLOCK`] pairs and
+            /// combines them with the operations of its `eval`. Measured on an Intel Xeon,
+            /// AVX-512: README, Performance.
+            #[inline]
+            fn eval_batch(
+                &self,
+                isa: crate::batch::Isa,
+                wi: crate::batch::Directions<'_>,
+                wo: crate::batch::Directions<'_>,
+                out: &mut [&mut [f32]; 3],
+            ) -> bool {
+                let Some(m) = (self as &dyn core::any::Any).downcast_ref::<Material<f32>>() else {
+                    return false;
+                };
+                let [c0, c1, c2] = out;
+                m.eval_batch_f32(isa, wi, wo, [&mut **c0, &mut **c1, &mut **c2]);
+                true
             }
 
             fn properties(&self) -> Properties {
@@ -457,34 +463,110 @@ models! {
     => layered::Layered(LayeredDesc),
 }
 
-/// `Brdf::eval` of a composition inside a `Sum`, kept out of line: it recurses into
-/// `Material`, so inlining has to stop somewhere, and here a sum of leaves inlines fully.
-#[cfg(feature = "alloc")]
-#[inline(never)]
-fn eval_composite<R: Real>(m: &Material<R>, wi: Vec3<R>, wo: Vec3<R>) -> [R; 3] {
-    m.eval(wi, wo)
-}
-
 /// The sum of the terms in order, `((t₀ + t₁) + t₂) + …`: the same additions as nested
 /// [`crate::models::Sum`]s, so a sum of two terms equals `Sum::new(a, b)` bit for bit. An
 /// empty sum is 0.
 #[cfg(feature = "alloc")]
-#[inline(always)]
+#[inline]
 fn sum_eval<R: Real>(terms: &[Material<R>], wi: Vec3<R>, wo: Vec3<R>) -> [R; 3] {
     let Some((first, rest)) = terms.split_first() else {
         return [R::zero(); 3];
     };
-    // A plain loop (not `Iterator::fold`, which need not inline into the explicit-lane
-    // kernels: out of line, the lane operations would be calls).
-    let mut acc = first.eval_term(wi, wo);
-    for t in rest {
-        let f = t.eval_term(wi, wo);
-        acc = crate::real::channels(
+    rest.iter().fold(first.eval(wi, wo), |acc, t| {
+        let f = t.eval(wi, wo);
+        crate::real::channels(
             #[inline(always)]
             |c| acc[c] + f[c],
+        )
+    })
+}
+
+/// [`sum_eval`] over a batch: per block of [`crate::batch::BLOCK`] pairs, the terms into
+/// scratch blocks, added in order, the last addition written to `out` (the same additions,
+/// so the same bits; each output written once; an empty sum writes `+0`).
+#[cfg(feature = "alloc")]
+fn sum_batch(
+    terms: &[Material<f32>],
+    isa: crate::batch::Isa,
+    wi: crate::batch::Directions<'_>,
+    wo: crate::batch::Directions<'_>,
+    out: [&mut [f32]; 3],
+) {
+    use crate::batch::{BLOCK, add_with, eval_with, for_each_block};
+    let Some((last, init)) = terms.split_last() else {
+        out.into_iter().for_each(|c| c.fill(0.0));
+        return;
+    };
+    let Some((first, middle)) = init.split_first() else {
+        let _ = eval_with(isa, last, wi, wo, out);
+        return;
+    };
+    let (mut acc, mut term) = ([[0.0f32; BLOCK]; 3], [[0.0f32; BLOCK]; 3]);
+    for_each_block(wi, wo, out, |wi, wo, out| {
+        let n = wi.len();
+        let [a0, a1, a2] = &mut acc;
+        let _ = eval_with(
+            isa,
+            first,
+            wi,
+            wo,
+            [&mut a0[..n], &mut a1[..n], &mut a2[..n]],
         );
-    }
-    acc
+        for t in middle {
+            let [t0, t1, t2] = &mut term;
+            let _ = eval_with(isa, t, wi, wo, [&mut t0[..n], &mut t1[..n], &mut t2[..n]]);
+            let b = [&term[0][..n], &term[1][..n], &term[2][..n]];
+            let [a0, a1, a2] = &mut acc;
+            add_with(
+                isa,
+                wi,
+                wo,
+                None,
+                b,
+                [&mut a0[..n], &mut a1[..n], &mut a2[..n]],
+            );
+        }
+        let [t0, t1, t2] = &mut term;
+        let _ = eval_with(
+            isa,
+            last,
+            wi,
+            wo,
+            [&mut t0[..n], &mut t1[..n], &mut t2[..n]],
+        );
+        let a = [&acc[0][..n], &acc[1][..n], &acc[2][..n]];
+        let b = [&term[0][..n], &term[1][..n], &term[2][..n]];
+        add_with(isa, wi, wo, Some(a), b, out);
+    });
+}
+
+/// [`Layered`]'s `eval` over a batch: per block of [`crate::batch::BLOCK`] pairs, the coat
+/// into `out` and the base into a scratch block, combined by
+/// [`crate::batch::layered_combine_with`] (the body of `Layered::eval`, so the same bits).
+#[cfg(feature = "alloc")]
+fn layered_batch(
+    m: &Layered<Material<f32>, Material<f32>, AnyFresnel<f32>>,
+    isa: crate::batch::Isa,
+    wi: crate::batch::Directions<'_>,
+    wo: crate::batch::Directions<'_>,
+    out: [&mut [f32]; 3],
+) {
+    use crate::batch::{BLOCK, eval_with, for_each_block, layered_combine_with};
+    let mut base = [[0.0f32; BLOCK]; 3];
+    for_each_block(wi, wo, out, |wi, wo, mut out| {
+        let n = wi.len();
+        let _ = eval_with(isa, &m.coat, wi, wo, out.each_mut().map(|c| &mut **c));
+        let [b0, b1, b2] = &mut base;
+        let _ = eval_with(
+            isa,
+            &m.base,
+            wi,
+            wo,
+            [&mut b0[..n], &mut b1[..n], &mut b2[..n]],
+        );
+        let base = [&base[0][..n], &base[1][..n], &base[2][..n]];
+        crate::fresnel::on_any_fresnel!(&m.fresnel, f => layered_combine_with(isa, f, wi, wo, base, out));
+    });
 }
 
 /// The properties of a sum, as [`crate::models::Sum`] declares them

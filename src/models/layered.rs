@@ -93,10 +93,6 @@ impl Properties {
 
 impl<A: Splat, B: Splat> Splat for Sum<A, B> {
     const EXPLICIT_LANES: bool = A::EXPLICIT_LANES || B::EXPLICIT_LANES;
-    #[inline]
-    fn explicit_lanes(&self) -> bool {
-        self.a.explicit_lanes() || self.b.explicit_lanes()
-    }
     type On<L: Real> = Sum<A::On<L>, B::On<L>>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {
@@ -175,10 +171,6 @@ impl<D, S, F> Layered<D, S, F> {
 
 impl<D: Splat, S: Splat, F: Splat> Splat for Layered<D, S, F> {
     const EXPLICIT_LANES: bool = D::EXPLICIT_LANES || S::EXPLICIT_LANES || F::EXPLICIT_LANES;
-    #[inline]
-    fn explicit_lanes(&self) -> bool {
-        self.base.explicit_lanes() || self.coat.explicit_lanes() || self.fresnel.explicit_lanes()
-    }
     type On<L: Real> = Layered<D::On<L>, S::On<L>, F::On<L>>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {
@@ -199,14 +191,8 @@ where
 {
     #[inline(always)]
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
-        let (m, swi, swo) = safe_dirs(wi, wo);
-        let (fi, fo) = (self.fresnel.eval(swi.z), self.fresnel.eval(swo.z));
         let (d, s) = (self.base.eval(wi, wo), self.coat.eval(wi, wo));
-        let r = crate::real::channels(
-            #[inline(always)]
-            |c| ((R::one() - fi[c]) * (R::one() - fo[c])).mul_add(d[c], s[c]),
-        );
-        masked(m, r)
+        layered_combine(&self.fresnel, wi, wo, d, s)
     }
 
     /// The union of the base's and the coat's kinks (both are evaluated at `(wi, wo)`; the
@@ -222,6 +208,27 @@ where
             .properties()
             .combine(self.coat.properties(), LAYERED_CONDITION)
     }
+}
+
+/// [`Layered`]'s value from its base's `d = D(wi, wo)` and its coat's `s = S(wi, wo)`:
+/// `s + (1 − F(cos θi))(1 − F(cos θo)) · d` (one fused multiply-add per channel), 0 unless
+/// both directions are above the surface. The body of [`Layered`]'s `eval`, shared with the
+/// batch evaluation of a layered material, which evaluates `d` and `s` in passes.
+#[inline(always)]
+pub(crate) fn layered_combine<R: Real, F: FresnelTerm<R, N>, const N: usize>(
+    fresnel: &F,
+    wi: Vec3<R>,
+    wo: Vec3<R>,
+    d: [R; N],
+    s: [R; N],
+) -> [R; N] {
+    let (m, swi, swo) = safe_dirs(wi, wo);
+    let (fi, fo) = (fresnel.eval(swi.z), fresnel.eval(swo.z));
+    let r = crate::real::channels(
+        #[inline(always)]
+        |c| ((R::one() - fi[c]) * (R::one() - fo[c])).mul_add(d[c], s[c]),
+    );
+    masked(m, r)
 }
 
 /// Importance sampling of a sum: a one-sample mixture of the parts' own samplers (Veach

@@ -162,6 +162,77 @@ pub trait Brdf<R: Real, const N: usize> {
     fn kinks(&self, _wo: Vec3<f64>) -> Kinks {
         Kinks::NONE
     }
+
+    /// A batch evaluation of the model's own (on `f32` structure-of-arrays slices), which the [`crate::batch`] entry points
+    /// ([`eval_with`](crate::batch::eval_with), [`eval`](crate::batch::eval),
+    /// [`eval_glam`](crate::batch::eval_glam)) try first: it writes `f(wi[j], wo[j])`
+    /// (channel `c` to `out[c][j]`, sr⁻¹, without the cosine) for every pair with
+    /// instruction set `isa` and returns `true`, or returns `false` without writing, and the
+    /// entry point runs its own loops. Only the batch path calls it, on the `f32` model. The caller has checked that `isa` is available and
+    /// that every slice has the same length.
+    ///
+    /// The default returns `false`; a wrapper must not forward it (its own values differ
+    /// from its model's). A material chosen at run time overrides it to match on
+    /// its variant **once per batch** and hand the concrete model to
+    /// [`crate::batch::eval_with`], instead of matching on every pair, which keeps LLVM
+    /// from vectorizing the loop: [`crate::material::Material`] does (a Cook-Torrance gold
+    /// material runs at the static model's speed, measured in the README), and an enum of
+    /// your own can do the same:
+    ///
+    /// ```
+    /// use brdf::batch::{self, Directions, Isa};
+    /// use brdf::models::{Lambert, OrenNayar, Properties};
+    /// use brdf::{Brdf, Real, Scalar, Vec3, real::Splat};
+    ///
+    /// /// A diffuse material chosen at run time.
+    /// enum Diffuse<R> { Lambert(Lambert<R, 1>), OrenNayar(OrenNayar<R, 1>) }
+    ///
+    /// impl<R: Real> Brdf<R, 1> for Diffuse<R> {
+    ///     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; 1] {
+    ///         match self { Diffuse::Lambert(m) => m.eval(wi, wo), Diffuse::OrenNayar(m) => m.eval(wi, wo) }
+    ///     }
+    ///     fn properties(&self) -> Properties {
+    ///         match self { Diffuse::Lambert(m) => m.properties(), Diffuse::OrenNayar(m) => m.properties() }
+    ///     }
+    ///     fn eval_batch(&self, isa: Isa, wi: Directions<'_>, wo: Directions<'_>, out: &mut [&mut [f32]; 1]) -> bool {
+    ///         // Only the `f32` model has batch forms; `eval_with` fails only on an
+    ///         // unavailable `isa`, which the caller ruled out.
+    ///         let Some(m) = (self as &dyn core::any::Any).downcast_ref::<Diffuse<f32>>() else { return false };
+    ///         let [c0] = out;
+    ///         match m {
+    ///             Diffuse::Lambert(m) => batch::eval_with(isa, m, wi, wo, [&mut **c0]).is_ok(),
+    ///             Diffuse::OrenNayar(m) => batch::eval_with(isa, m, wi, wo, [&mut **c0]).is_ok(),
+    ///         }
+    ///     }
+    /// }
+    ///
+    /// impl<S: Scalar> Splat for Diffuse<S> {
+    ///     type On<L: Real> = Diffuse<L>;
+    ///     fn splat<L: Real>(&self) -> Diffuse<L> {
+    ///         match self { Diffuse::Lambert(m) => Diffuse::Lambert(m.splat()), Diffuse::OrenNayar(m) => Diffuse::OrenNayar(m.splat()) }
+    ///     }
+    /// }
+    ///
+    /// let m = Diffuse::OrenNayar(OrenNayar::new([0.8f32], 0.3)?);
+    /// let (x, z) = ([0.6f32; 40], [0.8f32; 40]);
+    /// let zero = [0.0f32; 40];
+    /// let mut f = [0.0f32; 40];
+    /// batch::eval(&m, Directions::new(&x, &zero, &z), Directions::new(&zero, &x, &z), [&mut f]);
+    /// let one = m.eval(Vec3::new(0.6, 0.0, 0.8), Vec3::new(0.0, 0.6, 0.8))[0];
+    /// assert!(f.iter().all(|&v| (v - one).abs() <= 1e-6 * one));
+    /// # Ok::<(), brdf::Error>(())
+    /// ```
+    #[inline]
+    fn eval_batch(
+        &self,
+        isa: crate::batch::Isa,
+        wi: crate::batch::Directions<'_>,
+        wo: crate::batch::Directions<'_>,
+        out: &mut [&mut [f32]; N],
+    ) -> bool {
+        let _ = (isa, wi, wo, out);
+        false
+    }
 }
 
 /// Where a BRDF at a fixed `wo` is not smooth in `wi`, for numerical integration (see

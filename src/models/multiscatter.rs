@@ -749,10 +749,6 @@ impl<M, R: Real, const N: usize> KullaConty<M, R, N> {
 
 impl<M: Splat, S: Scalar, const N: usize> Splat for KullaConty<M, S, N> {
     const EXPLICIT_LANES: bool = M::EXPLICIT_LANES;
-    #[inline]
-    fn explicit_lanes(&self) -> bool {
-        self.model.explicit_lanes()
-    }
     type On<L: Real> = KullaConty<M::On<L>, L, N>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {
@@ -938,10 +934,6 @@ impl<M, R: Real, const N: usize> Turquin<M, R, N> {
 
 impl<M: Splat, S: Scalar, const N: usize> Splat for Turquin<M, S, N> {
     const EXPLICIT_LANES: bool = M::EXPLICIT_LANES;
-    #[inline]
-    fn explicit_lanes(&self) -> bool {
-        self.model.explicit_lanes()
-    }
     type On<L: Real> = Turquin<M::On<L>, L, N>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {

@@ -868,10 +868,6 @@ where
 /// ([`batch::sample`](crate::batch::sample)) like the model it wraps.
 impl<M: crate::real::Splat, St> crate::real::Splat for Sampled<M, St> {
     const EXPLICIT_LANES: bool = M::EXPLICIT_LANES;
-    #[inline]
-    fn explicit_lanes(&self) -> bool {
-        self.model.explicit_lanes()
-    }
     type On<L: Real> = Sampled<M::On<L>, St>;
     #[inline]
     fn splat<L: Real>(&self) -> Self::On<L> {
