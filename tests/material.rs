@@ -413,6 +413,18 @@ fn leaf_models(p: &Pairs) {
     let lambert = Lambert::new(rgb).unwrap();
     same_model("lambert", &lambert.into(), &lambert, p);
 
+    // A Cook-Torrance with the hardware-estimate policy: its own variant, on the explicit
+    // lanes with the estimates on AVX-512 like the static model.
+    let estimate = CookTorrance::new(
+        AnyNdf::from(ggx_iso()),
+        AnyFresnel::from(gold()),
+        AnyMasking::SmithHeightCorrelated,
+    )
+    .with_sqrt::<brdf::fast::HardwareEstimate>();
+    let direct = CookTorrance::new(ggx_iso(), gold(), SmithHeightCorrelated)
+        .with_sqrt::<brdf::fast::HardwareEstimate>();
+    same_model("cook_torrance hardware_estimate", &estimate.into(), &direct, p);
+
     let bp = ClassicBlinnPhong::new([0.1, 0.05, 0.02], 0.5, [0.04; 3], 64.0).unwrap();
     same_model("classic_blinn_phong", &bp.into(), &bp, p);
 

@@ -14,7 +14,8 @@ use brdf::material::{
     AshikhminShirleyDesc, ClassicBlinnPhongDesc, CookTorranceDesc, DenominatorDesc, FresnelDesc,
     KajiyaKayDesc, LafortuneDesc, LambertDesc, LayeredDesc, LobeDesc, MAX_DEPTH, MAX_TERMS,
     Material, MaterialDesc, MaterialError, NdfDesc, NormalizationDesc, NormalizedBlinnPhongDesc,
-    OrenNayarDesc, Reflectance, Rgb, ShirleyDiffuseDesc, SumDesc, WardDesc, WardNormalizationDesc,
+    OrenNayarDesc, Reflectance, Rgb, ShirleyDiffuseDesc, SqrtDesc, SumDesc, WardDesc,
+    WardNormalizationDesc,
 };
 use brdf::{Brdf, Vec3};
 use proptest::prelude::*;
@@ -110,6 +111,12 @@ fn every_model() -> Vec<MaterialDesc> {
                 alpha_y: aniso.then_some(0.5),
                 fresnel,
                 masking,
+                // Both square-root policies, round-tripped like every other field.
+                sqrt: if j % 2 == 0 {
+                    SqrtDesc::Exact
+                } else {
+                    SqrtDesc::HardwareEstimate
+                },
             }));
         }
     }
@@ -147,6 +154,7 @@ fn every_model() -> Vec<MaterialDesc> {
         alpha_y: None,
         fresnel: FresnelDesc::Dielectric { eta: 1.5 },
         masking: AnyMasking::SmithHeightCorrelated,
+        sqrt: SqrtDesc::Exact,
     });
     v.push(MaterialDesc::Sum(SumDesc {
         terms: vec![diffuse.clone(), coat.clone()],
@@ -660,11 +668,12 @@ proptest! {
             0 => MaterialDesc::CookTorrance(CookTorranceDesc {
                 ndf: NdfDesc::Ggx, alpha: None, alpha_x: Some(a), alpha_y: Some(b),
                 fresnel: FresnelDesc::Conductor { eta: Rgb([c; 3]), k: Rgb([d; 3]) },
-                masking: AnyMasking::SmithHeightCorrelated,
+                masking: AnyMasking::SmithHeightCorrelated, sqrt: SqrtDesc::HardwareEstimate,
             }),
             1 => MaterialDesc::CookTorrance(CookTorranceDesc {
                 ndf: NdfDesc::Beckmann, alpha: Some(a), alpha_x: None, alpha_y: None,
                 fresnel: FresnelDesc::Dielectric { eta: b }, masking: AnyMasking::VCavity,
+                sqrt: SqrtDesc::Exact,
             }),
             2 => MaterialDesc::NormalizedBlinnPhong(NormalizedBlinnPhongDesc {
                 rd: Rgb([a; 3]), rs: b, f0: Reflectance::Value(Rgb([c; 3])), shininess: d,
@@ -894,4 +903,47 @@ fn unknown_keys_in_nested_tables_are_named_with_their_path() {
         "model = \"lafortune\"\nrho_d = 0.1\nlobes = [{ cx = -1, cy = -1, cz = 1, n = 10, rho = 0.5, cw = 2 }]",
         &["`lobes`", "unknown field `cw`"],
     );
+}
+
+/// `sqrt = "hardware_estimate"` builds the Cook-Torrance material with that policy (the
+/// static model's value, which is the exact one off the AVX-512 batch path), it round-trips,
+/// and a misspelt policy is an error that names the field.
+#[test]
+fn cook_torrance_square_root_policy_from_a_file() {
+    use brdf::fast::HardwareEstimate;
+    use brdf::fresnel::AnyFresnel;
+    use brdf::models::CookTorrance;
+    use brdf::ndf::{AnyNdf, GgxIsotropic};
+    let text = r#"
+        model = "cook_torrance"
+        ndf = "ggx"
+        alpha = 0.3
+        fresnel = { preset = "gold" }
+        sqrt = "hardware_estimate"
+    "#;
+    let desc: MaterialDesc = toml::from_str(text).unwrap();
+    let m: Material<f32> = desc.build().unwrap();
+    let direct = CookTorrance::new(
+        AnyNdf::from(GgxIsotropic::<f32>::new(0.3).unwrap()),
+        AnyFresnel::from(brdf::fresnel::Conductor::from_preset(Preset::Gold).unwrap()),
+        AnyMasking::SmithHeightCorrelated,
+    )
+    .with_sqrt::<HardwareEstimate>();
+    assert_eq!(m, Material::from(direct));
+    assert!(matches!(m, Material::CookTorranceEstimate(_)));
+    let (wi, wo) = (Vec3::new(0.6, 0.0, 0.8), Vec3::new(-0.28, 0.0, 0.96));
+    assert_eq!(m.eval(wi, wo), direct.eval(wi, wo));
+    let back: MaterialDesc = toml::from_str(&toml::to_string(&desc).unwrap()).unwrap();
+    assert_eq!(back, desc);
+    assert!(toml::to_string(&desc).unwrap().contains("hardware_estimate"));
+
+    // The default is written nowhere and reads back as exact.
+    let exact: MaterialDesc = toml::from_str(&text.replace("sqrt = \"hardware_estimate\"", "")).unwrap();
+    assert!(!toml::to_string(&exact).unwrap().contains("sqrt"));
+    assert!(matches!(exact.build::<f32>().unwrap(), Material::CookTorrance(_)));
+
+    let err = toml::from_str::<MaterialDesc>(&text.replace("hardware_estimate", "fast"))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("`sqrt`") && err.contains("hardware_estimate"), "{err}");
 }

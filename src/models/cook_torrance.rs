@@ -239,7 +239,30 @@ pub(crate) mod desc {
         iso_alpha,
     };
 
-    crate::material::field_fns!(ndf, alpha, alpha_x, alpha_y, fresnel, masking);
+    crate::material::field_fns!(ndf, alpha, alpha_x, alpha_y, fresnel, masking, sqrt);
+
+    /// How a Cook-Torrance material takes the half vector's length and its final division
+    /// (a [`crate::fast::SqrtFn`] policy). In TOML: `sqrt = "hardware_estimate"`.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+    #[serde(rename_all = "snake_case")]
+    #[serde(expecting = "a square-root policy name")]
+    pub enum SqrtDesc {
+        /// [`ExactSqrt`](crate::fast::ExactSqrt): correctly rounded (default).
+        #[default]
+        Exact,
+        /// [`HardwareEstimate`](crate::fast::HardwareEstimate): the AVX-512 estimates with one
+        /// refinement step in the batch path on `Isa::Avx512` (within a few ULP), exact
+        /// everywhere else.
+        HardwareEstimate,
+    }
+
+    impl SqrtDesc {
+        /// Whether this is the default, [`SqrtDesc::Exact`] (not written out).
+        #[must_use]
+        pub fn is_exact(&self) -> bool {
+            *self == SqrtDesc::Exact
+        }
+    }
 
     /// [`CookTorrance`] with a choice of NDF, Fresnel and masking term.
     ///
@@ -279,6 +302,13 @@ pub(crate) mod desc {
         /// The masking term (default `smith_height_correlated`).
         #[serde(default, deserialize_with = "field::masking")]
         pub masking: AnyMasking,
+        /// The square-root policy (default `exact`).
+        #[serde(
+            default,
+            skip_serializing_if = "SqrtDesc::is_exact",
+            deserialize_with = "field::sqrt"
+        )]
+        pub sqrt: SqrtDesc,
     }
 
     impl ModelDesc for CookTorranceDesc {
@@ -294,7 +324,13 @@ pub(crate) mod desc {
             let inv = |e| invalid(Self::NAME)(iso_alpha(isotropic, e));
             let ndf = self.ndf.build(alpha, isotropic).map_err(inv)?;
             let fresnel = build_fresnel(&self.fresnel).map_err(inv)?;
-            Ok(CookTorrance::new(ndf, fresnel, self.masking).into())
+            let ct = CookTorrance::new(ndf, fresnel, self.masking);
+            Ok(match self.sqrt {
+                SqrtDesc::Exact => ct.into(),
+                SqrtDesc::HardwareEstimate => {
+                    ct.with_sqrt::<crate::fast::HardwareEstimate>().into()
+                }
+            })
         }
     }
 }
