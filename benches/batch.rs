@@ -658,6 +658,35 @@ fn bench_material(c: &mut Criterion) {
         &wo,
         &mut out,
     );
+    // The same coat with the hardware-estimate policy (`sqrt = "hardware_estimate"` in a
+    // material file), static and as a material.
+    let coat_estimate = coat.with_sqrt::<HardwareEstimate>();
+    bench_isas(
+        &mut g,
+        "coat_estimate_static",
+        batch::eval_with,
+        &coat_estimate,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    let coat_estimate_material = Material::from(
+        CookTorrance::new(
+            AnyNdf::from(coat.ndf),
+            AnyFresnel::from(coat.fresnel),
+            AnyMasking::from(coat.masking),
+        )
+        .with_sqrt::<HardwareEstimate>(),
+    );
+    bench_isas(
+        &mut g,
+        "coat_estimate_material",
+        batch::eval_with,
+        &coat_estimate_material,
+        &wi,
+        &wo,
+        &mut out,
+    );
     let plastic = brdf::models::Sum::new(lambert, coat);
     let runtime = Material::Sum(vec![
         runtime_lambert.clone(),

@@ -935,15 +935,26 @@ fn cook_torrance_square_root_policy_from_a_file() {
     assert_eq!(m.eval(wi, wo), direct.eval(wi, wo));
     let back: MaterialDesc = toml::from_str(&toml::to_string(&desc).unwrap()).unwrap();
     assert_eq!(back, desc);
-    assert!(toml::to_string(&desc).unwrap().contains("hardware_estimate"));
+    assert!(
+        toml::to_string(&desc)
+            .unwrap()
+            .contains("hardware_estimate")
+    );
 
     // The default is written nowhere and reads back as exact.
-    let exact: MaterialDesc = toml::from_str(&text.replace("sqrt = \"hardware_estimate\"", "")).unwrap();
+    let exact: MaterialDesc =
+        toml::from_str(&text.replace("sqrt = \"hardware_estimate\"", "")).unwrap();
     assert!(!toml::to_string(&exact).unwrap().contains("sqrt"));
-    assert!(matches!(exact.build::<f32>().unwrap(), Material::CookTorrance(_)));
+    assert!(matches!(
+        exact.build::<f32>().unwrap(),
+        Material::CookTorrance(_)
+    ));
 
     let err = toml::from_str::<MaterialDesc>(&text.replace("hardware_estimate", "fast"))
         .unwrap_err()
         .to_string();
-    assert!(err.contains("`sqrt`") && err.contains("hardware_estimate"), "{err}");
+    assert!(
+        err.contains("`sqrt`") && err.contains("hardware_estimate"),
+        "{err}"
+    );
 }
