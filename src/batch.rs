@@ -47,7 +47,10 @@
 //! that model's loop and bits on every instruction set (a `match` per pair would keep LLVM
 //! from vectorizing). A `Sum` or `Layered` material runs its parts the same way over blocks
 //! of [`BLOCK`] pairs and combines them in a vectorized pass, with the additions and the
-//! fused multiply-add of its `eval` (so the bits of its static counterpart).
+//! fused multiply-add of its `eval` (so the bits of its static counterpart). A static
+//! composition holding a `Material` (`Sum<Material<f32>, _>`) does not get this, and if
+//! another part asks for explicit lanes the `Material` runs out of line there (the same
+//! bits, slowly): compose run-time materials with `Material::Sum` and `Material::Layered`.
 //!
 //! Bodies that call a library transcendental (`powf`, `exp` from `std`/`libm`) do not
 //! vectorize this way; the models offer polynomial alternatives (see [`crate::fast`]) for
