@@ -578,16 +578,31 @@ fn for_each_ndf_fresnel<N>(
     same_cook_torrance(name, ndf, NoFresnel, g, p);
 }
 
-/// `Sum` and `Layered` of runtime materials against the static compositions.
+/// The parts of the compositions tested: a Lambert base, an Oren-Nayar term and a GGX coat
+/// with a dielectric's Fresnel.
 #[cfg(feature = "alloc")]
-fn compositions(p: &Pairs) {
-    let lambert = Lambert::new([0.5, 0.4, 0.3]).unwrap();
-    let oren = OrenNayar::new([0.3; 3], 0.5).unwrap();
+#[allow(clippy::type_complexity)]
+fn composition_parts() -> (
+    Lambert<f32, 3>,
+    OrenNayar<f32, 3>,
+    CookTorrance<f32, GgxIsotropic<f32>, Dielectric<f32, 3>, SmithHeightCorrelated>,
+) {
     let coat = CookTorrance::new(
         GgxIsotropic::new(0.1).unwrap(),
         Dielectric::new(1.5).unwrap().channels(),
         SmithHeightCorrelated,
     );
+    (
+        Lambert::new([0.5, 0.4, 0.3]).unwrap(),
+        OrenNayar::new([0.3; 3], 0.5).unwrap(),
+        coat,
+    )
+}
+
+/// `Sum` and `Layered` of runtime materials against the static compositions.
+#[cfg(feature = "alloc")]
+fn compositions(p: &Pairs) {
+    let (lambert, oren, coat) = composition_parts();
     let any_coat = || {
         Material::from(CookTorrance::new(
             AnyNdf::from(coat.ndf),
@@ -674,13 +689,7 @@ fn compositions_over_several_batch_blocks_equal_the_static_models_bit_for_bit() 
         .map(|k| (dir(k, 0.0, 0.1), dir(k, 0.37, 0.6)))
         .collect();
 
-    let lambert = Lambert::new([0.5, 0.4, 0.3]).unwrap();
-    let oren = OrenNayar::new([0.3; 3], 0.5).unwrap();
-    let coat = CookTorrance::new(
-        GgxIsotropic::new(0.1).unwrap(),
-        Dielectric::new(1.5).unwrap().channels(),
-        SmithHeightCorrelated,
-    );
+    let (lambert, oren, coat) = composition_parts();
     let sum = Material::Sum(vec![lambert.into(), coat_material(coat), oren.into()]);
     let layered = Material::Layered(Box::new(Layered::new(
         Material::Sum(vec![lambert.into(), oren.into()]),
