@@ -400,47 +400,32 @@ where
     }
 }
 
-/// `out[c][i] = a[c][i] + b[c][i]`, or `out[c][i] += b[c][i]` without `a`: one more term of
-/// a sum, added in a vectorized loop.
+/// `out[c][i] += term[c][i]`: one more term of a sum, added in a vectorized loop.
 #[cfg(feature = "alloc")]
-struct Add<'a, const N: usize> {
-    a: Option<[&'a [f32]; N]>,
-    b: [&'a [f32]; N],
-}
+struct AddInto<'a, const N: usize>([&'a [f32]; N]);
 
 #[cfg(feature = "alloc")]
-impl<const N: usize> Loop<N> for Add<'_, N> {
+impl<const N: usize> Loop<N> for AddInto<'_, N> {
     #[inline(always)]
     fn run(&self, wi: Directions<'_>, wo: Directions<'_>, out: [&mut [f32]; N]) {
         let n = checked_len(&wi, &wo, &out);
-        for (c, o) in out.into_iter().enumerate() {
-            let (o, b) = (&mut o[..n], &self.b[c][..n]);
-            match self.a {
-                Some(a) => {
-                    let a = &a[c][..n];
-                    for i in 0..n {
-                        o[i] = a[i] + b[i];
-                    }
-                }
-                None => o.iter_mut().zip(b).for_each(|(o, b)| *o += b),
-            }
+        for (o, t) in out.into_iter().zip(self.0) {
+            o[..n].iter_mut().zip(&t[..n]).for_each(|(o, t)| *o += t);
         }
     }
 }
 
-/// `out = a + b` channel by channel, or `out += b` without `a` (`f32` additions, the same
-/// in every loop), compiled for `isa` (available; the slices have the length of `wi`: the
-/// caller checked).
+/// `out += term` channel by channel (`f32` additions, the same in every loop), compiled for
+/// `isa` (available; the slices have the length of `wi`: the caller checked).
 #[cfg(feature = "alloc")]
-pub(crate) fn add_with<const N: usize>(
+pub(crate) fn add_into_with<const N: usize>(
     isa: Isa,
     wi: Directions<'_>,
     wo: Directions<'_>,
-    a: Option<[&[f32]; N]>,
-    b: [&[f32]; N],
+    term: [&[f32]; N],
     out: [&mut [f32]; N],
 ) {
-    let add = Add { a, b };
+    let add = AddInto(term);
     let _ = dispatch(isa, &add, &add, wi, wo, out);
 }
 

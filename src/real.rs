@@ -998,7 +998,10 @@ pub trait Splat {
     /// [`crate::batch::Isa::Avx512`], 8 on [`crate::batch::Isa::Avx2Fma`]) instead of the
     /// one-lane [`F32Fma`] loop that LLVM vectorizes: `true` for a model that takes a square
     /// root or division through [`crate::fast::HardwareEstimate`] (the estimate instructions
-    /// are used on AVX-512). `false` by default; a composed model reports its parts'
+    /// are used on AVX-512), and for the run-time parts [`crate::ndf::AnyNdf`],
+    /// [`crate::fresnel::AnyFresnel`] and [`crate::masking::AnyMasking`] (a `match` per pair
+    /// keeps LLVM from vectorizing the one-lane loop; on lanes it is one branch per
+    /// register). `false` by default; a composed model reports its parts'
     /// (`a || b`), and a wrapper of your own forwards its model's
     /// (`const EXPLICIT_LANES: bool = B::EXPLICIT_LANES;`), or the batch path runs it on the
     /// one-lane loop (exact operations instead of the estimates).

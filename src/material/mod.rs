@@ -485,9 +485,9 @@ fn sum_eval<R: Real>(terms: &[Material<R>], wi: Vec3<R>, wo: Vec3<R>) -> [R; 3] 
     })
 }
 
-/// [`sum_eval`] over a batch: per block of [`crate::batch::BLOCK`] pairs, the terms into
-/// scratch blocks, added in order, the last addition written to `out` (the same additions,
-/// so the same bits; each output written once; an empty sum writes `+0`).
+/// [`sum_eval`] over a batch: per block of [`crate::batch::BLOCK`] pairs, the first term
+/// into `out`, then each further term into a scratch block added to `out`, in order (the
+/// same additions, so the same bits; an empty sum writes `+0`).
 #[cfg(feature = "alloc")]
 fn sum_batch(
     terms: &[Material<f32>],
@@ -496,51 +496,21 @@ fn sum_batch(
     wo: crate::batch::Directions<'_>,
     out: [&mut [f32]; 3],
 ) {
-    use crate::batch::{BLOCK, add_with, eval_with, for_each_block};
-    let Some((last, init)) = terms.split_last() else {
+    use crate::batch::{BLOCK, add_into_with, eval_with, for_each_block};
+    let Some((first, rest)) = terms.split_first() else {
         out.into_iter().for_each(|c| c.fill(0.0));
         return;
     };
-    let Some((first, middle)) = init.split_first() else {
-        let _ = eval_with(isa, last, wi, wo, out);
-        return;
-    };
-    let (mut acc, mut term) = ([[0.0f32; BLOCK]; 3], [[0.0f32; BLOCK]; 3]);
-    for_each_block(wi, wo, out, |wi, wo, out| {
+    let mut term = [[0.0f32; BLOCK]; 3];
+    for_each_block(wi, wo, out, |wi, wo, mut out| {
         let n = wi.len();
-        let [a0, a1, a2] = &mut acc;
-        let _ = eval_with(
-            isa,
-            first,
-            wi,
-            wo,
-            [&mut a0[..n], &mut a1[..n], &mut a2[..n]],
-        );
-        for t in middle {
+        let _ = eval_with(isa, first, wi, wo, out.each_mut().map(|c| &mut **c));
+        for t in rest {
             let [t0, t1, t2] = &mut term;
             let _ = eval_with(isa, t, wi, wo, [&mut t0[..n], &mut t1[..n], &mut t2[..n]]);
-            let b = [&term[0][..n], &term[1][..n], &term[2][..n]];
-            let [a0, a1, a2] = &mut acc;
-            add_with(
-                isa,
-                wi,
-                wo,
-                None,
-                b,
-                [&mut a0[..n], &mut a1[..n], &mut a2[..n]],
-            );
+            let term = [&term[0][..n], &term[1][..n], &term[2][..n]];
+            add_into_with(isa, wi, wo, term, out.each_mut().map(|c| &mut **c));
         }
-        let [t0, t1, t2] = &mut term;
-        let _ = eval_with(
-            isa,
-            last,
-            wi,
-            wo,
-            [&mut t0[..n], &mut t1[..n], &mut t2[..n]],
-        );
-        let a = [&acc[0][..n], &acc[1][..n], &acc[2][..n]];
-        let b = [&term[0][..n], &term[1][..n], &term[2][..n]];
-        add_with(isa, wi, wo, Some(a), b, out);
     });
 }
 
