@@ -106,6 +106,10 @@ use crate::{Real, Scalar};
 /// `cos θd = wi·wm`, the cosine between the light and the microfacet normal.
 pub trait FresnelTerm<R: Real, const N: usize> {
     /// Reflectance per channel, each in `[0, 1]`, for `cos_theta_d ∈ [0, 1]`.
+    ///
+    /// The microfacet models pass `cos θd = |wi + wo|/2`, which can exceed 1 by a rounding
+    /// (by a few ULP with [`crate::fast::HardwareEstimate`]): the terms of this module clamp
+    /// it, and an implementation whose formula needs `cos θd ≤ 1` should too.
     fn eval(&self, cos_theta_d: R) -> [R; N];
 
     /// [`FresnelTerm::eval`] for a caller that also has `cos²θd` (`cos2_theta_d`, equal to

@@ -43,11 +43,12 @@ def find_mca(given):
 
 
 def kernels(binary):
-    """(address, size) of every kernel_avx512 instantiation."""
+    """(address, size) of every kernel_avx512 instantiation (the one-lane-model kernel and
+    the explicit-lane kernel `kernel_avx512_lanes16`)."""
     out = []
     for line in run(['nm', '-S', '-C', binary]).splitlines():
         f = line.split(maxsplit=3)
-        if len(f) == 4 and f[2] in 'tT' and f[3] == 'brdf::batch::kernel_avx512':
+        if len(f) == 4 and f[2] in 'tT' and f[3] in ('brdf::batch::kernel_avx512', 'brdf::batch::kernel_avx512_lanes16'):
             out.append((int(f[0], 16), int(f[1], 16)))
     return sorted(out)
 
