@@ -176,5 +176,46 @@ fn roughconductor(c: &mut Criterion) {
     );
 }
 
-criterion_group!(benches, diffuse, microfacet, roughconductor);
+/// The run-time `Material` against the static models it holds, sampled: the rough gold
+/// conductor (GGX α = 0.2, separable Smith, spherical caps: every model's default sampler)
+/// with run-time parts, and a plastic (Lambert + a GGX lobe with a dielectric's Fresnel) as
+/// a `Sum` material, whose one-sample mixture picks a term per sample. The material matches
+/// on its variant per sample (`SampleBrdf` has no batch hook).
+fn material(c: &mut Criterion) {
+    use brdf::fresnel::{AnyFresnel, Dielectric};
+    use brdf::masking::AnyMasking;
+    use brdf::material::Material;
+    use brdf::models::Sum;
+    use brdf::ndf::AnyNdf;
+    let group = "sample_material";
+    let gold = CookTorrance::new(
+        GgxIsotropic::new(0.2_f32).unwrap(),
+        Conductor::<f32, 3>::from_preset(Preset::Gold).unwrap(),
+        SmithSeparable,
+    );
+    let runtime_parts = CookTorrance::new(
+        AnyNdf::from(gold.ndf),
+        AnyFresnel::from(gold.fresnel),
+        AnyMasking::from(gold.masking),
+    );
+    bench_sampler(c, group, "gold_static", &gold);
+    bench_sampler(c, group, "gold_runtime_parts", &runtime_parts);
+    bench_sampler(c, group, "gold_material", &Material::from(runtime_parts));
+    let lambert = Lambert::<f32, 3>::new([0.2, 0.3, 0.4]).unwrap();
+    let coat = CookTorrance::new(
+        GgxIsotropic::new(0.2_f32).unwrap(),
+        Dielectric::new(1.5_f32).unwrap().channels::<3>(),
+        SmithHeightCorrelated,
+    );
+    let coat_parts = CookTorrance::new(
+        AnyNdf::from(coat.ndf),
+        AnyFresnel::from(coat.fresnel),
+        AnyMasking::from(coat.masking),
+    );
+    bench_sampler(c, group, "plastic_static", &Sum::new(lambert, coat));
+    let plastic = Material::Sum(vec![Material::from(lambert), Material::from(coat_parts)]);
+    bench_sampler(c, group, "plastic_material", &plastic);
+}
+
+criterion_group!(benches, diffuse, microfacet, roughconductor, material);
 criterion_main!(benches);

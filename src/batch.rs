@@ -26,7 +26,8 @@
 //!   them), and 4·10⁻⁷ relative on the batch tests' workloads.
 //!
 //! **Explicit lanes.** Two kinds of model run differently on the FMA instruction sets in
-//! [`eval_with`], [`eval`] and [`eval_glam`] ([`Splat::EXPLICIT_LANES`]): on explicit
+//! [`eval_with`], [`eval`], [`eval_glam`], [`sample_with`] and [`sample`]
+//! ([`Splat::EXPLICIT_LANES`]): on explicit
 //! registers of lanes (16 on [`Isa::Avx512`], 8 on [`Isa::Avx2Fma`]), a register of pairs per
 //! iteration and the remainder under a lane mask, every operation the one of [`F32Fma`] (so
 //! `eval` on the [`F32Fma`] form still gives the bits), except that
@@ -34,9 +35,9 @@
 //! * a model that takes a square root or division through [`crate::fast::HardwareEstimate`]
 //!   gets `vrsqrt14ps` / `vrcp14ps` with one refinement step on [`Isa::Avx512`] (each within
 //!   1 ULP; LLVM does not vectorize the scalar estimate instructions): results within a few
-//!   ULP of the exact policy (`tests/batch.rs`: 1e-6 relative), not bit-identical to any
-//!   `eval`. On the other instruction sets (and in the pipelined and sampling loops) the
-//!   policy is the exact one, bit for bit;
+//!   ULP of the exact policy (`tests/batch.rs`: 1e-6 relative, for samples too), not
+//!   bit-identical to any `eval`. On the other instruction sets (and in the pipelined
+//!   loops) the policy is the exact one, bit for bit;
 //!
 //! A wrapper model of your own forwards the flag in its `Splat` impl
 //! (`const EXPLICIT_LANES: bool = B::EXPLICIT_LANES;`), or it runs on the one-lane loop.
@@ -51,6 +52,10 @@
 //! composition holding a `Material` (`Sum<Material<f32>, _>`) does not get this, and if
 //! another part asks for explicit lanes the `Material` runs out of line there (the same
 //! bits, slowly): compose run-time materials with `Material::Sum` and `Material::Layered`.
+//! Sampling has the same hook ([`SampleBrdf::sample_batch`]): a material of one model samples
+//! a batch as that model; a `Sum` or `Layered` material, whose mixture picks a part per
+//! sample, is sampled per sample (out of line, about 20× slower than its static counterpart:
+//! README, Performance).
 //!
 //! Bodies that call a library transcendental (`powf`, `exp` from `std`/`libm`) do not
 //! vectorize this way; the models offer polynomial alternatives (see [`crate::fast`]) for
@@ -276,6 +281,44 @@ mod wide_form {
 
     #[cfg(not(all(feature = "std", target_arch = "x86_64")))]
     impl<B: Splat, const N: usize> WideForm<N> for B {}
+
+    /// The model's explicit-lane forms as samplers (the batch samplers' explicit lanes).
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    pub trait WideSample<const N: usize> {
+        /// The same model on [`crate::real::lanes::Zmm`] (16 lanes, AVX-512).
+        type Sampler16: crate::SampleBrdf<crate::real::lanes::Zmm, N>;
+        /// The same model on [`crate::real::lanes::Ymm`] (8 lanes, AVX2).
+        type Sampler8: crate::SampleBrdf<crate::real::lanes::Ymm, N>;
+        /// The 16-lane form, constants keeping their bits.
+        fn sampler16(&self) -> Self::Sampler16;
+        /// The 8-lane form, constants keeping their bits.
+        fn sampler8(&self) -> Self::Sampler8;
+    }
+
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    impl<B: Splat, const N: usize> WideSample<N> for B
+    where
+        B::On<crate::real::lanes::Zmm>: crate::SampleBrdf<crate::real::lanes::Zmm, N>,
+        B::On<crate::real::lanes::Ymm>: crate::SampleBrdf<crate::real::lanes::Ymm, N>,
+    {
+        type Sampler16 = B::On<crate::real::lanes::Zmm>;
+        type Sampler8 = B::On<crate::real::lanes::Ymm>;
+        #[inline]
+        fn sampler16(&self) -> Self::Sampler16 {
+            self.splat()
+        }
+        #[inline]
+        fn sampler8(&self) -> Self::Sampler8 {
+            self.splat()
+        }
+    }
+
+    /// See the module docs (no explicit lanes on this target).
+    #[cfg(not(all(feature = "std", target_arch = "x86_64")))]
+    pub trait WideSample<const N: usize> {}
+
+    #[cfg(not(all(feature = "std", target_arch = "x86_64")))]
+    impl<B: Splat, const N: usize> WideSample<N> for B {}
 }
 
 /// Whether the FMA kernels ([`Isa::Avx2Fma`], [`Isa::Avx512`]) of [`eval_with`], [`eval`],
@@ -895,7 +938,8 @@ fn glam_chunks<const N: usize>(
 
 /// What [`sample`] needs of a model: [`BatchBrdf`] whose `f32` and [`F32Fma`] forms both
 /// sample ([`SampleBrdf`]). Implemented for every model of this crate that samples.
-pub trait BatchSample<const N: usize>: BatchBrdf<N> + SampleBrdf<f32, N>
+pub trait BatchSample<const N: usize>:
+    BatchBrdf<N> + SampleBrdf<f32, N> + wide_form::WideSample<N>
 where
     Self::Fused: SampleBrdf<F32Fma, N>,
     Self::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
@@ -904,7 +948,7 @@ where
 
 impl<B, const N: usize> BatchSample<N> for B
 where
-    B: BatchBrdf<N> + SampleBrdf<f32, N>,
+    B: BatchBrdf<N> + SampleBrdf<f32, N> + wide_form::WideSample<N>,
     B::Fused: SampleBrdf<F32Fma, N>,
     B::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
 {
@@ -989,6 +1033,90 @@ fn sample_kernel_avx512<L: SampleLoop<N>, const N: usize>(
     l.run(wo, u, out)
 }
 
+/// `LANES` samples per iteration of `model` on explicit registers ([`Zmm`], [`Ymm`]), the last
+/// `n mod LANES` under a lane mask: the sampling loop of models with
+/// [`Splat::EXPLICIT_LANES`], as [`lanes_loop`] is their evaluation loop.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[inline(always)]
+fn lanes_sample_loop<Bk, B, const N: usize>(
+    model: B,
+    wo: Directions<'_>,
+    u: [&[f32]; 3],
+    out: &mut SampleOut<'_, N>,
+) where
+    Bk: crate::real::lanes::Backend,
+    B: SampleBrdf<crate::real::lanes::Lanes<Bk>, N>,
+{
+    use crate::real::lanes::{first_lanes, load, store};
+    let n = wo.len();
+    #[inline(always)]
+    fn block<Bk, B, const N: usize>(
+        model: &B,
+        wo: &Directions<'_>,
+        u: &[&[f32]; 3],
+        out: &mut SampleOut<'_, N>,
+        i: usize,
+        m: crate::real::lanes::LanesMask<Bk>,
+    ) where
+        Bk: crate::real::lanes::Backend,
+        B: SampleBrdf<crate::real::lanes::Lanes<Bk>, N>,
+    {
+        // SAFETY: called only from the kernels below (their features checked by the
+        // dispatcher), and the mask keeps lanes `i + j < n`, within every slice (the caller
+        // checked that all have length `n`).
+        unsafe {
+            let s = model.sample(
+                Vec3::new(load(wo.x, i, m), load(wo.y, i, m), load(wo.z, i, m)),
+                [load(u[0], i, m), load(u[1], i, m), load(u[2], i, m)],
+            );
+            store(out.x, i, m, s.wi.x);
+            store(out.y, i, m, s.wi.y);
+            store(out.z, i, m, s.wi.z);
+            store(out.pdf, i, m, s.pdf);
+            for (o, w) in out.weight.iter_mut().zip(s.weight) {
+                store(o, i, m, w);
+            }
+        }
+    }
+    let lanes = Bk::LANES;
+    let full = n - n % lanes;
+    // SAFETY: as above.
+    let all = unsafe { first_lanes::<Bk>(lanes) };
+    let mut i = 0;
+    while i < full {
+        block(&model, &wo, &u, out, i, all);
+        i += lanes;
+    }
+    if full < n {
+        let tail = unsafe { first_lanes::<Bk>(n - full) };
+        block(&model, &wo, &u, out, full, tail);
+    }
+}
+
+/// [`lanes_sample_loop`] on 16 AVX-512 lanes.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
+fn sample_kernel_avx512_lanes16<B: SampleBrdf<Zmm, N>, const N: usize>(
+    model: B,
+    wo: Directions<'_>,
+    u: [&[f32]; 3],
+    out: &mut SampleOut<'_, N>,
+) {
+    lanes_sample_loop::<crate::real::lanes::Avx512, B, N>(model, wo, u, out)
+}
+
+/// [`lanes_sample_loop`] on 8 AVX2 lanes.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[target_feature(enable = "avx2,fma")]
+fn sample_kernel_avx2_lanes8<B: SampleBrdf<Ymm, N>, const N: usize>(
+    model: B,
+    wo: Directions<'_>,
+    u: [&[f32]; 3],
+    out: &mut SampleOut<'_, N>,
+) {
+    lanes_sample_loop::<crate::real::lanes::Avx2, B, N>(model, wo, u, out)
+}
+
 /// Draws one `wi` per `wo[i]` from the uniform numbers `(u[0][i], u[1][i], u[2][i])` with a
 /// chosen instruction set ([`SampleBrdf::sample`] per element; see the
 /// [sampling conventions](crate::sampling)), writing the direction, its density and its
@@ -996,7 +1124,12 @@ fn sample_kernel_avx512<L: SampleLoop<N>, const N: usize>(
 ///
 /// [`Isa::Portable`] results equal [`SampleBrdf::sample`] on `brdf` bit for bit; the FMA
 /// variants equal `sample` on [`BatchBrdf::fused`] (or [`BatchBrdf::shared_div`] where
-/// [`shares_divisions`]) bit for bit, as for [`eval_with`].
+/// [`shares_divisions`], except on the explicit lanes of a model with
+/// [`BatchBrdf::EXPLICIT_LANES`]) bit for bit, as for [`eval_with`] (hardware estimates
+/// aside: see the [module docs](self)). A model with a batch sampler of its own
+/// ([`SampleBrdf::sample_batch`], tried first: a run-time
+/// [`Material`](crate::material::Material) of one model) gives the samples of the model it
+/// runs.
 ///
 /// # Errors
 ///
@@ -1033,6 +1166,18 @@ where
     );
     if !isa.is_available() {
         return Err(Unavailable(isa));
+    }
+    if brdf.sample_batch(isa, wo, u, out) {
+        return Ok(());
+    }
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    if B::EXPLICIT_LANES && isa != Isa::Portable {
+        // SAFETY: `is_available` checked at run time that the CPU has these features.
+        match isa {
+            Isa::Avx512 => unsafe { sample_kernel_avx512_lanes16(brdf.sampler16(), wo, u, out) },
+            _ => unsafe { sample_kernel_avx2_lanes8(brdf.sampler8(), wo, u, out) },
+        }
+        return Ok(());
     }
     if isa == Isa::Portable {
         PerSample::<f32, B>(brdf, PhantomData).run(wo, u, out);

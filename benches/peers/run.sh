@@ -150,11 +150,12 @@ if [ "$SAMPLE" = 1 ]; then
     "$py" "$PEERS" sample --variant "$VARIANT" --alpha "$ALPHA" --pairs "$PAIRS" --reps "$REPS" \
         --warmup "$WARMUP" --out "$WORK/mitsuba-sample.bin" --timing "$WORK/mitsuba-sample.json"
     # vndf: visible normals (as Mitsuba); caps: the crate's default spherical caps; -shared:
-    # the conductor with SharedDivision (as for eval).
-    for ST in vndf caps vndf-shared caps-shared; do
-        STRATEGY=${ST%-shared}
+    # the conductor with SharedDivision (as for eval); -estimate: with HardwareEstimate
+    # (explicit 16-lane registers and the estimate instructions on AVX-512).
+    for ST in vndf caps vndf-shared caps-shared vndf-estimate caps-estimate; do
+        STRATEGY=${ST%-*}
         POLICY=exact
-        [ "$ST" = "$STRATEGY" ] || POLICY=shared
+        [ "$ST" = "$STRATEGY" ] || POLICY=${ST#*-}
         echo "== brdf batch::sample (GgxIsotropic, $ST): $N pairs, $REPS repetitions"
         "$BIN" --mode sample --strategy "$STRATEGY" --policy "$POLICY" --pairs "$PAIRS" \
             --alpha "$ALPHA" --eta "$ETA" --k "$K" --reps "$REPS" --warmup "$WARMUP" \
@@ -220,7 +221,9 @@ if sample == "1":
     print(f"  {'Mitsuba, kernel alone':46} {rate(s['kernel_median_s']):8.1f}")
     for st, name in (("vndf", "visible normals"), ("caps", "spherical caps"),
                      ("vndf-shared", "vis. normals, shared div."),
-                     ("caps-shared", "caps, shared division")):
+                     ("caps-shared", "caps, shared division"),
+                     ("vndf-estimate", "vis. normals, estimates"),
+                     ("caps-estimate", "caps, estimates")):
         t, e = load(f"brdf-sample-{st}.json"), load(f"compare-sample-{st}.json")
         print(f"  brdf, GgxIsotropic, {name:26} {rate(t['median_s']):8.1f}   "
               f"({t['isa']}; {s['wall_median_s'] / t['median_s']:.2f}x per call, "

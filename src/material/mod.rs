@@ -177,6 +177,24 @@ macro_rules! models {
         }
 
         impl Material<f32> {
+            /// [`SampleBrdf::sample_batch`]: a leaf variant's model through
+            /// [`crate::batch::sample_with`] (`isa` is available: the caller checked), and
+            /// `false` for a `Sum` or `Layered` material, which the entry point then samples
+            /// per sample (its mixture chooses a part per sample).
+            fn sample_batch_f32(
+                &self,
+                isa: crate::batch::Isa,
+                wo: crate::batch::Directions<'_>,
+                u: [&[f32]; 3],
+                out: &mut crate::batch::SampleOut<'_, 3>,
+            ) -> bool {
+                match self {
+                    $($( Material::$v(m) => crate::batch::sample_with(isa, m, wo, u, out).is_ok(), )?)*
+                    #[cfg(feature = "alloc")]
+                    Material::Sum(_) | Material::Layered(_) => false,
+                }
+            }
+
             /// [`Brdf::eval_batch`] on three channels: the variant's model through
             /// [`crate::batch::eval_with`] (`isa` is available: the caller checked).
             fn eval_batch_f32(
@@ -305,6 +323,24 @@ macro_rules! models {
                     #[cfg(feature = "alloc")]
                     Material::Layered(m) => m.albedo_estimate(wo),
                 }
+            }
+
+            /// An `f32` material of one model samples a batch as that model: one `match` per
+            /// call, then [`crate::batch::sample_with`] on the concrete model (its own loop and
+            /// bits). A `Sum` or `Layered` material returns `false`: the entry point samples
+            /// it per sample.
+            #[inline]
+            fn sample_batch(
+                &self,
+                isa: crate::batch::Isa,
+                wo: crate::batch::Directions<'_>,
+                u: [&[f32]; 3],
+                out: &mut crate::batch::SampleOut<'_, 3>,
+            ) -> bool {
+                let Some(m) = (self as &dyn core::any::Any).downcast_ref::<Material<f32>>() else {
+                    return false;
+                };
+                m.sample_batch_f32(isa, wo, u, out)
             }
         }
 

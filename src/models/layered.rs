@@ -255,10 +255,15 @@ where
             p,
             wo,
             u,
+            #[inline(always)]
             |u| self.a.sample(wo, u),
+            #[inline(always)]
             |u| self.b.sample(wo, u),
+            #[inline(always)]
             |wi| self.a.pdf(wo, wi),
+            #[inline(always)]
             |wi| self.b.pdf(wo, wi),
+            #[inline(always)]
             |wi| self.eval(wi, wo),
         )
     }
@@ -266,7 +271,15 @@ where
     #[inline(always)]
     fn pdf(&self, wo: Vec3<R>, wi: Vec3<R>) -> R {
         let p = first_probability(self.a.albedo_estimate(wo), self.b.albedo_estimate(wo));
-        pdf_pair(p, wo, wi, |wi| self.a.pdf(wo, wi), |wi| self.b.pdf(wo, wi))
+        pdf_pair(
+            p,
+            wo,
+            wi,
+            #[inline(always)]
+            |wi| self.a.pdf(wo, wi),
+            #[inline(always)]
+            |wi| self.b.pdf(wo, wi),
+        )
     }
 
     #[inline(always)]
@@ -319,10 +332,15 @@ where
             first_probability(s, d),
             wo,
             u,
+            #[inline(always)]
             |u| self.coat.sample(wo, u),
+            #[inline(always)]
             |u| self.base.sample(wo, u),
+            #[inline(always)]
             |wi| self.coat.pdf(wo, wi),
+            #[inline(always)]
             |wi| self.base.pdf(wo, wi),
+            #[inline(always)]
             |wi| self.eval(wi, wo),
         )
     }
@@ -334,7 +352,9 @@ where
             first_probability(s, d),
             wo,
             wi,
+            #[inline(always)]
             |wi| self.coat.pdf(wo, wi),
+            #[inline(always)]
             |wi| self.base.pdf(wo, wi),
         )
     }

@@ -817,10 +817,15 @@ impl<M: SampleBrdf<R, N>, R: Real, const N: usize> SampleBrdf<R, N> for KullaCon
             first_probability(ss, ms),
             wo,
             u,
+            #[inline(always)]
             |u| self.model.sample(wo, u),
+            #[inline(always)]
             |u| cosine_direction(wo, u),
+            #[inline(always)]
             |wi| self.model.pdf(wo, wi),
+            #[inline(always)]
             |wi| pdf_cosine(wo, wi),
+            #[inline(always)]
             |wi| self.eval(wi, wo),
         )
     }
@@ -832,7 +837,9 @@ impl<M: SampleBrdf<R, N>, R: Real, const N: usize> SampleBrdf<R, N> for KullaCon
             first_probability(ss, ms),
             wo,
             wi,
+            #[inline(always)]
             |wi| self.model.pdf(wo, wi),
+            #[inline(always)]
             |wi| pdf_cosine(wo, wi),
         )
     }

@@ -119,6 +119,31 @@ pub trait SampleBrdf<R: Real, const N: usize>: Brdf<R, N> {
         let _ = wo;
         R::one()
     }
+
+    /// The model's own batch sampling, which [`crate::batch::sample_with`] (and
+    /// [`sample`](crate::batch::sample)) try first: it draws one sample per `wo[j]` from
+    /// `(u[0][j], u[1][j], u[2][j])` with instruction set `isa`, writes it to `out` as
+    /// `sample_with` does and returns `true`, or returns `false` without writing, and the
+    /// entry point runs its own loops. Only the batch path calls it, on the `f32` model; the
+    /// caller has checked that `isa` is available and that every slice has the same length.
+    ///
+    /// The default returns `false`. A wrapper that changes the samples (another sampler, a
+    /// compensation lobe) must not forward it. The counterpart of
+    /// [`Brdf::eval_batch`], with the same purpose: a material chosen
+    /// at run time ([`crate::material::Material`]) matches on its variant **once per batch**
+    /// and hands the concrete model to [`crate::batch::sample_with`], instead of matching on
+    /// every sample out of line (README, Performance).
+    #[inline]
+    fn sample_batch(
+        &self,
+        isa: crate::batch::Isa,
+        wo: crate::batch::Directions<'_>,
+        u: [&[f32]; 3],
+        out: &mut crate::batch::SampleOut<'_, N>,
+    ) -> bool {
+        let _ = (isa, wo, u, out);
+        false
+    }
 }
 
 /// Warps `(u1, u2) ∈ [0, 1]²` to the upper hemisphere with density `cos θ / π`.

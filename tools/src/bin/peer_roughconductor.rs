@@ -83,8 +83,8 @@ elsewhere); --policy shared gives the
 conductor SharedDivision (one division for the three channels where
 brdf::batch::shares_divisions(), e.g. on Intel); default: exact.
 --mode sample times brdf::batch::sample on the viewer directions and uniforms of FILE
-(--strategy vndf: visible normals, as Mitsuba; caps: the crate's default spherical caps)
-and writes wi (3 arrays), pdf and the weight (3 arrays). --isa picks the batch kernel
+(--strategy vndf: visible normals, as Mitsuba; caps: the crate's default spherical caps;
+--policy exact, shared or estimate) and writes wi (3 arrays), pdf and the weight (3 arrays). --isa picks the batch kernel
 (default: brdf::batch::Isa::detect()). Run by benches/peers/run.sh.";
 
 /// The command line.
@@ -292,27 +292,33 @@ fn sample_mode(a: &Args, p: &[Vec<f32>], gold: Conductor<f32, 3>) -> (Vec<f64>, 
     let u = [&p[7][..], &p[8][..], &p[6][..]];
     let mut out: [Vec<f32>; 7] = std::array::from_fn(|_| vec![0.0f32; n]);
     macro_rules! run {
-        ($d:expr, $fresnel:expr) => {{
-            let ct = CookTorrance::new($d.unwrap_or_else(|e| fail(e)), $fresnel, SmithSeparable);
+        ($d:expr, $fresnel:expr, $sqrt:ty) => {{
+            let d = $d.unwrap_or_else(|e| fail(e));
+            let ct = CookTorrance::new(d, $fresnel, SmithSeparable).with_sqrt::<$sqrt>();
             match a.strategy.as_str() {
                 "vndf" => time_sample(&ct.sampled_with::<VisibleNormals>(), wo, u, &mut out, a),
                 "caps" => time_sample(&ct.sampled_with::<SphericalCaps>(), wo, u, &mut out, a),
                 other => fail(format!("--strategy {other:?}: expected vndf or caps")),
             }
         }};
-        ($fresnel:expr) => {
+        ($fresnel:expr, $sqrt:ty) => {
             match a.ndf.as_str() {
-                "isotropic" => run!(GgxIsotropic::<f32>::new(a.alpha), $fresnel),
-                "ggx" => run!(Ggx::<f32>::anisotropic(a.alpha, a.alpha), $fresnel),
+                "isotropic" => run!(GgxIsotropic::<f32>::new(a.alpha), $fresnel, $sqrt),
+                "ggx" => run!(Ggx::<f32>::anisotropic(a.alpha, a.alpha), $fresnel, $sqrt),
                 other => fail(format!("--ndf {other:?}: expected isotropic or ggx")),
             }
         };
     }
     let times = match a.policy.as_str() {
-        "exact" => run!(gold),
-        "shared" => run!(gold.share_divisions().unwrap_or_else(|e| fail(e))),
+        "exact" => run!(gold, ExactSqrt),
+        "shared" => run!(
+            gold.share_divisions().unwrap_or_else(|e| fail(e)),
+            ExactSqrt
+        ),
+        // Explicit 16-lane registers with vrsqrt14ps/vrcp14ps on Isa::Avx512.
+        "estimate" => run!(gold.with_policy::<HardwareEstimate>(), HardwareEstimate),
         other => fail(format!(
-            "--mode sample takes --policy exact or shared, not {other:?}"
+            "--mode sample takes --policy exact, shared or estimate, not {other:?}"
         )),
     };
     (times, out.into())
