@@ -53,9 +53,10 @@
 //! another part asks for explicit lanes the `Material` runs out of line there (the same
 //! bits, slowly): compose run-time materials with `Material::Sum` and `Material::Layered`.
 //! Sampling has the same hook ([`SampleBrdf::sample_batch`]): a material of one model samples
-//! a batch as that model; a `Sum` or `Layered` material, whose mixture picks a part per
-//! sample, is sampled per sample (out of line, about 20× slower than its static counterpart:
-//! README, Performance).
+//! a batch as that model; a `Sum` or `Layered` material runs its mixture over blocks: each
+//! part's samples, densities and albedo estimates through that part's batch kernels, the
+//! material's value through its batch evaluation, and the choice and weights in plain
+//! passes with the per-sample sampler's functions (the same bits).
 //!
 //! Bodies that call a library transcendental (`powf`, `exp` from `std`/`libm`) do not
 //! vectorize this way; the models offer polynomial alternatives (see [`crate::fast`]) for
@@ -1032,6 +1033,277 @@ fn sample_kernel_avx512<L: SampleLoop<N>, const N: usize>(
 ) {
     l.run(wo, u, out)
 }
+
+/// The batch densities and albedo estimates of a run-time mixture's parts (crate-private:
+/// the batch sampler of `Material::Sum` and `Material::Layered`, which need `alloc`).
+#[cfg(feature = "alloc")]
+mod mixture_parts {
+    use super::*;
+
+    /// A per-element loop of the crate-private batch densities and albedo estimates (the parts
+    /// of a run-time mixture's batch sampler), compiled once per instruction set: `I` input
+    /// streams, one output.
+    trait MapLoop<const I: usize> {
+        fn run(&self, inputs: [&[f32]; I], out: &mut [f32]);
+    }
+
+    /// [`SampleBrdf::pdf`] on the one-lane type `K` per element: inputs `wo` then `wi`.
+    struct PerPdf<'a, K, B, const N: usize>(&'a B, PhantomData<K>);
+
+    impl<K, B, const N: usize> MapLoop<6> for PerPdf<'_, K, B, N>
+    where
+        K: Real<Scalar = f32, Mask = bool>,
+        B: SampleBrdf<K, N>,
+    {
+        #[inline(always)]
+        fn run(&self, inputs: [&[f32]; 6], out: &mut [f32]) {
+            let n = out.len();
+            let [ox, oy, oz, ix, iy, iz] = inputs.map(|s| &s[..n]);
+            for j in 0..n {
+                let wo = Vec3::new(K::splat(ox[j]), K::splat(oy[j]), K::splat(oz[j]));
+                let wi = Vec3::new(K::splat(ix[j]), K::splat(iy[j]), K::splat(iz[j]));
+                out[j] = self.0.pdf(wo, wi).lane(0);
+            }
+        }
+    }
+
+    /// [`SampleBrdf::albedo_estimate`] on the one-lane type `K` per element: input `wo`.
+    struct PerEstimate<'a, K, B, const N: usize>(&'a B, PhantomData<K>);
+
+    impl<K, B, const N: usize> MapLoop<3> for PerEstimate<'_, K, B, N>
+    where
+        K: Real<Scalar = f32, Mask = bool>,
+        B: SampleBrdf<K, N>,
+    {
+        #[inline(always)]
+        fn run(&self, inputs: [&[f32]; 3], out: &mut [f32]) {
+            let n = out.len();
+            let [ox, oy, oz] = inputs.map(|s| &s[..n]);
+            for j in 0..n {
+                let wo = Vec3::new(K::splat(ox[j]), K::splat(oy[j]), K::splat(oz[j]));
+                out[j] = self.0.albedo_estimate(wo).lane(0);
+            }
+        }
+    }
+
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx2,fma")]
+    fn map_kernel_avx2<L: MapLoop<I>, const I: usize>(l: &L, inputs: [&[f32]; I], out: &mut [f32]) {
+        l.run(inputs, out)
+    }
+
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
+    fn map_kernel_avx512<L: MapLoop<I>, const I: usize>(
+        l: &L,
+        inputs: [&[f32]; I],
+        out: &mut [f32],
+    ) {
+        l.run(inputs, out)
+    }
+
+    /// Runs a [`MapLoop`] built by `make` on the form `isa`'s loop runs: the `f32` model on
+    /// [`Isa::Portable`], else its [`F32FmaSharedDiv`] form where [`shares_divisions`] and its
+    /// [`F32Fma`] form elsewhere, compiled for `isa` (available: the caller checked).
+    macro_rules! map_with {
+        ($isa:expr, $brdf:expr, $loop:ident, $op:expr, $inputs:expr, $out:expr) => {{
+            let (isa, brdf, inputs, out) = ($isa, $brdf, $inputs, $out);
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            if B::EXPLICIT_LANES && isa != Isa::Portable {
+                // SAFETY: the caller checked with `is_available` that the CPU has these
+                // features.
+                match isa {
+                    Isa::Avx512 => unsafe {
+                        map_kernel_avx512_lanes16(brdf.sampler16(), $op, &inputs, out)
+                    },
+                    _ => unsafe { map_kernel_avx2_lanes8(brdf.sampler8(), $op, &inputs, out) },
+                }
+                return;
+            }
+            if isa == Isa::Portable {
+                $loop::<f32, _, N>(brdf, PhantomData).run(inputs, out);
+            } else if shares_divisions() {
+                let form = brdf.shared_div();
+                map_fma(
+                    isa,
+                    &$loop::<F32FmaSharedDiv, _, N>(&form, PhantomData),
+                    inputs,
+                    out,
+                );
+            } else {
+                let form = brdf.fused();
+                map_fma(isa, &$loop::<F32Fma, _, N>(&form, PhantomData), inputs, out);
+            }
+        }};
+    }
+
+    /// What a map loop computes per element (the explicit-lane loops' switch).
+    #[derive(Clone, Copy)]
+    #[cfg_attr(not(all(feature = "std", target_arch = "x86_64")), allow(dead_code))]
+    enum MapOp {
+        /// [`SampleBrdf::pdf`]: inputs `wo` then `wi`.
+        Pdf,
+        /// [`SampleBrdf::albedo_estimate`]: input `wo`.
+        Estimate,
+    }
+
+    /// `LANES` densities or estimates per iteration of `model` on explicit registers, the
+    /// last `n mod LANES` under a lane mask: the map loop of models with
+    /// [`Splat::EXPLICIT_LANES`] (as [`lanes_sample_loop`] is their sampling loop).
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[inline(always)]
+    fn lanes_map_loop<Bk, B, const N: usize>(
+        model: B,
+        op: MapOp,
+        inputs: &[&[f32]],
+        out: &mut [f32],
+    ) where
+        Bk: crate::real::lanes::Backend,
+        B: SampleBrdf<crate::real::lanes::Lanes<Bk>, N>,
+    {
+        use crate::real::lanes::{LanesMask, first_lanes, load, store};
+        let n = out.len();
+        assert!(inputs.iter().all(|s| s.len() == n));
+        #[inline(always)]
+        fn block<Bk, B, const N: usize>(
+            model: &B,
+            op: MapOp,
+            inputs: &[&[f32]],
+            out: &mut [f32],
+            i: usize,
+            m: LanesMask<Bk>,
+        ) where
+            Bk: crate::real::lanes::Backend,
+            B: SampleBrdf<crate::real::lanes::Lanes<Bk>, N>,
+        {
+            // SAFETY: called only from the kernels below (their features checked by the
+            // dispatcher), and the mask keeps lanes `i + j < n`, within every slice.
+            unsafe {
+                let at = |k: usize| {
+                    Vec3::new(
+                        load(inputs[k], i, m),
+                        load(inputs[k + 1], i, m),
+                        load(inputs[k + 2], i, m),
+                    )
+                };
+                let v = match op {
+                    MapOp::Pdf => model.pdf(at(0), at(3)),
+                    MapOp::Estimate => model.albedo_estimate(at(0)),
+                };
+                store(out, i, m, v);
+            }
+        }
+        let lanes = Bk::LANES;
+        let full = n - n % lanes;
+        // SAFETY: as above.
+        let all = unsafe { first_lanes::<Bk>(lanes) };
+        let mut i = 0;
+        while i < full {
+            block(&model, op, inputs, out, i, all);
+            i += lanes;
+        }
+        if full < n {
+            let tail = unsafe { first_lanes::<Bk>(n - full) };
+            block(&model, op, inputs, out, full, tail);
+        }
+    }
+
+    /// [`lanes_map_loop`] on 16 AVX-512 lanes.
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
+    fn map_kernel_avx512_lanes16<B: SampleBrdf<Zmm, N>, const N: usize>(
+        model: B,
+        op: MapOp,
+        inputs: &[&[f32]],
+        out: &mut [f32],
+    ) {
+        lanes_map_loop::<crate::real::lanes::Avx512, B, N>(model, op, inputs, out)
+    }
+
+    /// [`lanes_map_loop`] on 8 AVX2 lanes.
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[target_feature(enable = "avx2,fma")]
+    fn map_kernel_avx2_lanes8<B: SampleBrdf<Ymm, N>, const N: usize>(
+        model: B,
+        op: MapOp,
+        inputs: &[&[f32]],
+        out: &mut [f32],
+    ) {
+        lanes_map_loop::<crate::real::lanes::Avx2, B, N>(model, op, inputs, out)
+    }
+
+    /// Runs `l` compiled for `isa`'s FMA instruction sets (available: the caller checked).
+    #[inline]
+    fn map_fma<L: MapLoop<I>, const I: usize>(
+        isa: Isa,
+        l: &L,
+        inputs: [&[f32]; I],
+        out: &mut [f32],
+    ) {
+        match isa {
+            // SAFETY: the caller checked with `is_available` that the CPU has these features.
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            Isa::Avx2Fma => unsafe { map_kernel_avx2(l, inputs, out) },
+            // SAFETY: as above.
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            Isa::Avx512 => unsafe { map_kernel_avx512(l, inputs, out) },
+            _ => {
+                let _ = (l, inputs, out);
+                unreachable!("only Portable is available here")
+            }
+        }
+    }
+
+    /// `out[j] = pdf(wo[j], wi[j])` ([`SampleBrdf::pdf`]) with instruction set `isa` (available),
+    /// on the form [`sample_with`]'s one-lane loops run, so the densities of its samples bit for
+    /// bit. Crate-private: the densities of a run-time mixture's parts.
+    pub(crate) fn pdf_with<B, const N: usize>(
+        isa: Isa,
+        brdf: &B,
+        wo: Directions<'_>,
+        wi: Directions<'_>,
+        out: &mut [f32],
+    ) where
+        B: BatchSample<N>,
+        B::Fused: SampleBrdf<F32Fma, N>,
+        B::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
+    {
+        assert!(wo.len() == out.len() && wi.len() == out.len());
+        map_with!(
+            isa,
+            brdf,
+            PerPdf,
+            MapOp::Pdf,
+            [wo.x, wo.y, wo.z, wi.x, wi.y, wi.z],
+            out
+        )
+    }
+
+    /// `out[j] = albedo_estimate(wo[j])` ([`SampleBrdf::albedo_estimate`]) as [`pdf_with`].
+    pub(crate) fn albedo_estimate_with<B, const N: usize>(
+        isa: Isa,
+        brdf: &B,
+        wo: Directions<'_>,
+        out: &mut [f32],
+    ) where
+        B: BatchSample<N>,
+        B::Fused: SampleBrdf<F32Fma, N>,
+        B::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
+    {
+        assert!(wo.len() == out.len());
+        map_with!(
+            isa,
+            brdf,
+            PerEstimate,
+            MapOp::Estimate,
+            [wo.x, wo.y, wo.z],
+            out
+        )
+    }
+}
+
+#[cfg(feature = "alloc")]
+pub(crate) use mixture_parts::{albedo_estimate_with, pdf_with};
 
 /// `LANES` samples per iteration of `model` on explicit registers ([`Zmm`], [`Ymm`]), the last
 /// `n mod LANES` under a lane mask: the sampling loop of models with

@@ -265,12 +265,21 @@ where
     (worst, differ)
 }
 
-/// GGX + Schlick and the rough gold conductor with [`HardwareEstimate`] (the half vector, the
-/// final division and the conductor's roots and divisions): within 1e-6 relative of the
-/// exact policy on AVX-512 (a few ULP: each estimate is within 1 ULP, `real::lanes`'s tests),
-/// bit for bit elsewhere, at lengths around the 16-lane blocks and the masked tail.
-#[test]
-fn hardware_estimates_within_a_few_ulp_of_exact() {
+/// The workloads of the estimate tests: GGX + Schlick (α = 0.3), the rough gold conductor,
+/// and that conductor with [`HardwareEstimate`] everywhere (the half vector, the final
+/// division, the conductor's roots and divisions).
+#[allow(clippy::type_complexity)]
+fn estimate_workloads() -> (
+    CookTorrance<f32, GgxIsotropic<f32>, Schlick<f32, 1>, SmithHeightCorrelated>,
+    CookTorrance<f32, Ggx<f32>, Conductor<f32, 3>, SmithSeparable>,
+    CookTorrance<
+        f32,
+        Ggx<f32>,
+        Conductor<f32, 3, HardwareEstimate>,
+        SmithSeparable,
+        HardwareEstimate,
+    >,
+) {
     let ggx = CookTorrance::new(
         GgxIsotropic::<f32>::new(0.3).unwrap(),
         Schlick::<f32, 1>::new([0.04]).unwrap(),
@@ -287,6 +296,16 @@ fn hardware_estimates_within_a_few_ulp_of_exact() {
         SmithSeparable,
     )
     .with_sqrt::<HardwareEstimate>();
+    (ggx, gold, gold_estimate)
+}
+
+/// GGX + Schlick and the rough gold conductor with [`HardwareEstimate`] (the half vector, the
+/// final division and the conductor's roots and divisions): within 1e-6 relative of the
+/// exact policy on AVX-512 (a few ULP: each estimate is within 1 ULP, `real::lanes`'s tests),
+/// bit for bit elsewhere, at lengths around the 16-lane blocks and the masked tail.
+#[test]
+fn hardware_estimates_within_a_few_ulp_of_exact() {
+    let (ggx, gold, gold_estimate) = estimate_workloads();
     let ggx_estimate = ggx.with_sqrt::<HardwareEstimate>();
     // Smaller roughness: the GGX peak is sharper, its relative error the same.
     let sharp = CookTorrance::new(
@@ -505,10 +524,11 @@ fn batch_sampling_equals_scalar_sampling_on_every_isa() {
 }
 
 /// Sampling with run-time parts (explicit lanes on the FMA instruction sets), a `Material` of
-/// one model (sampled as that model through its batch hook), a `Sum` material (sampled per
-/// sample) and the static plastic `Sum` whose mixture closures are inlined into the kernels:
-/// each equals its `SampleBrdf::sample` bit for bit, at lengths around the 8- and 16-lane
-/// registers and the masked tail.
+/// one model (sampled as that model through its batch hook), `Sum` and `Layered` materials,
+/// nested ones too (their mixtures over blocks of the parts' batches), and the static
+/// plastic `Sum` whose mixture closures are inlined into the kernels: each equals its
+/// `SampleBrdf::sample` bit for bit, at lengths around the 8- and 16-lane registers, the
+/// masked tail and several blocks.
 #[test]
 fn batch_sampling_of_run_time_parts_and_materials() {
     use brdf::fresnel::{AnyFresnel, Dielectric};
@@ -537,10 +557,24 @@ fn batch_sampling_of_run_time_parts_and_materials() {
         AnyMasking::from(coat.masking),
     );
     let plastic = Material::Sum(vec![Material::from(lambert), Material::from(coat_parts)]);
-    for n in [0, 1, 15, 17, 1031] {
+    // A layered material and a nested sum of three terms (an empty sum and a sum of one).
+    let layered = Material::Layered(Box::new(brdf::models::Layered::new(
+        Material::from(lambert),
+        Material::from(coat_parts),
+        AnyFresnel::from(Dielectric::new(1.5_f32).unwrap().channels::<3>()),
+    )));
+    let nested = Material::Sum(vec![
+        plastic.clone(),
+        Material::Sum(vec![]),
+        Material::Sum(vec![Material::from(parts)]),
+        layered.clone(),
+    ]);
+    for n in [0, 1, 15, 17, 1031, 2 * batch::BLOCK + 5] {
         assert!(check_sample("run-time parts", &parts, n) >= 1);
         assert!(check_sample("gold material", &Material::from(parts), n) >= 1);
         assert!(check_sample("plastic material", &plastic, n) >= 1);
+        assert!(check_sample("layered material", &layered, n) >= 1);
+        assert!(check_sample("nested material", &nested, n) >= 1);
         assert!(check_sample("plastic", &Sum::new(lambert, coat), n) >= 1);
     }
 }
@@ -627,22 +661,7 @@ where
 /// see `check_sample_estimate`.
 #[test]
 fn hardware_estimate_sampling_within_a_few_ulp_of_exact() {
-    let ggx = CookTorrance::new(
-        GgxIsotropic::<f32>::new(0.3).unwrap(),
-        Schlick::<f32, 1>::new([0.04]).unwrap(),
-        SmithHeightCorrelated,
-    );
-    let gold = CookTorrance::new(
-        Ggx::<f32>::new(0.2).unwrap(),
-        Conductor::<f32, 3>::from_preset(ior::Preset::Gold).unwrap(),
-        SmithSeparable,
-    );
-    let gold_estimate = CookTorrance::new(
-        gold.ndf,
-        gold.fresnel.with_policy::<HardwareEstimate>(),
-        SmithSeparable,
-    )
-    .with_sqrt::<HardwareEstimate>();
+    let (ggx, gold, gold_estimate) = estimate_workloads();
     let mut worst = [0.0f64; 2];
     for n in [0, 1, 15, 17, 1031] {
         worst[0] = worst[0].max(check_sample_estimate(

@@ -98,6 +98,8 @@ use crate::real::Splat;
 use crate::sampling::{Sample, SampleBrdf};
 use crate::{Real, Scalar, Vec3};
 
+#[cfg(feature = "alloc")]
+mod batch_sampling;
 #[cfg(feature = "serde")]
 mod desc;
 #[cfg(feature = "serde")]
@@ -178,9 +180,8 @@ macro_rules! models {
 
         impl Material<f32> {
             /// [`SampleBrdf::sample_batch`]: a leaf variant's model through
-            /// [`crate::batch::sample_with`] (`isa` is available: the caller checked), and
-            /// `false` for a `Sum` or `Layered` material, which the entry point then samples
-            /// per sample (its mixture chooses a part per sample).
+            /// [`crate::batch::sample_with`] (`isa` is available: the caller checked), a
+            /// `Sum` or `Layered` material by its parts (`batch_sampling`).
             fn sample_batch_f32(
                 &self,
                 isa: crate::batch::Isa,
@@ -191,6 +192,46 @@ macro_rules! models {
                 match self {
                     $($( Material::$v(m) => crate::batch::sample_with(isa, m, wo, u, out).is_ok(), )?)*
                     #[cfg(feature = "alloc")]
+                    Material::Sum(_) | Material::Layered(_) => {
+                        batch_sampling::sample_mixture(self, isa, wo, u, out);
+                        true
+                    }
+                }
+            }
+
+            /// The densities of a leaf variant's model at `(wo[j], wi[j])` through its batch
+            /// kernels (`false` for a mixture: `batch_sampling` combines its parts').
+            #[cfg(feature = "alloc")]
+            fn pdf_batch_f32(
+                &self,
+                isa: crate::batch::Isa,
+                wo: crate::batch::Directions<'_>,
+                wi: crate::batch::Directions<'_>,
+                out: &mut [f32],
+            ) -> bool {
+                match self {
+                    $($( Material::$v(m) => {
+                        crate::batch::pdf_with(isa, m, wo, wi, out);
+                        true
+                    } )?)*
+                    Material::Sum(_) | Material::Layered(_) => false,
+                }
+            }
+
+            /// The albedo estimates of a leaf variant's model at each `wo[j]`, as
+            /// [`Material::pdf_batch_f32`].
+            #[cfg(feature = "alloc")]
+            fn estimate_batch_f32(
+                &self,
+                isa: crate::batch::Isa,
+                wo: crate::batch::Directions<'_>,
+                out: &mut [f32],
+            ) -> bool {
+                match self {
+                    $($( Material::$v(m) => {
+                        crate::batch::albedo_estimate_with(isa, m, wo, out);
+                        true
+                    } )?)*
                     Material::Sum(_) | Material::Layered(_) => false,
                 }
             }
@@ -327,8 +368,12 @@ macro_rules! models {
 
             /// An `f32` material of one model samples a batch as that model: one `match` per
             /// call, then [`crate::batch::sample_with`] on the concrete model (its own loop and
-            /// bits). A `Sum` or `Layered` material returns `false`: the entry point samples
-            /// it per sample.
+            /// bits). A `Sum` or `Layered` material samples its mixture over blocks of
+            /// [`crate::batch::BLOCK`]: its parts' samples, densities and estimates through
+            /// their batch kernels (nested mixtures recursively), its value through its batch
+            /// evaluation, then the choice and the weight per sample with the functions of
+            /// the per-sample sampler (the same bits as `sample` on the form the batch loops
+            /// run; `tests/batch.rs`).
             #[inline]
             fn sample_batch(
                 &self,

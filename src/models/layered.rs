@@ -297,12 +297,21 @@ impl<D, S, F> Layered<D, S, F> {
         S: SampleBrdf<R, N>,
         F: FresnelTerm<R, N>,
     {
-        let fo = mean(self.fresnel.eval(wo.z.saturate()));
         (
             self.coat.albedo_estimate(wo),
-            (R::one() - fo).max(R::zero()) * self.base.albedo_estimate(wo),
+            coat_transmission(&self.fresnel, wo) * self.base.albedo_estimate(wo),
         )
     }
+}
+
+/// `max(0, 1 − mean F(cos θo))`: the weight of the base's estimate under a coat.
+#[inline(always)]
+pub(crate) fn coat_transmission<R: Real, const N: usize, F: FresnelTerm<R, N>>(
+    fresnel: &F,
+    wo: Vec3<R>,
+) -> R {
+    let fo = mean(fresnel.eval(wo.z.saturate()));
+    (R::one() - fo).max(R::zero())
 }
 
 /// Importance sampling of a coat over a base: a one-sample mixture (Veach 1997, §9.2.4) of

@@ -304,17 +304,36 @@ pub(crate) fn sample_pair<R: Real, const N: usize>(
     pdf_b: impl Fn(Vec3<R>) -> R,
     eval: impl Fn(Vec3<R>) -> [R; N],
 ) -> Sample<R, N> {
-    let tiny = R::from_f64(1e-30);
-    let top = R::from_f64(ONE_BELOW);
-    let ua = (u[2] / p.max(tiny)).min(top);
-    let ub = ((u[2] - p) / (R::one() - p).max(tiny)).clamp(R::zero(), top);
+    let (ua, ub) = split_u2(p, u[2]);
     let sa = sample_a([u[0], u[1], ua]);
     let sb = sample_b([u[0], u[1], ub]);
-    let choose_a = u[2].lt(p);
-    let wi = select_vec(choose_a, sa.wi, sb.wi);
-    let valid = (choose_a & sa.valid) | (!choose_a & sb.valid);
+    let (wi, valid) = choose_pair(p, u[2], (sa.wi, sa.valid), (sb.wi, sb.valid));
     let pdf = pdf_pair(p, wo, wi, pdf_a, pdf_b);
     finish(wi, pdf, eval(wi), valid & wo.z.gt(R::zero()))
+}
+
+/// The third uniform numbers of [`sample_pair`]'s parts: `u2/p` for `a` and
+/// `(u2 − p)/(1 − p)` for `b`, each kept below 1.
+#[inline(always)]
+pub(crate) fn split_u2<R: Real>(p: R, u2: R) -> (R, R) {
+    let tiny = R::from_f64(1e-30);
+    let top = R::from_f64(ONE_BELOW);
+    let ua = (u2 / p.max(tiny)).min(top);
+    let ub = ((u2 - p) / (R::one() - p).max(tiny)).clamp(R::zero(), top);
+    (ua, ub)
+}
+
+/// [`sample_pair`]'s choice: part `a`'s direction and validity where `u2 < p`, else `b`'s.
+#[inline(always)]
+pub(crate) fn choose_pair<R: Real>(
+    p: R,
+    u2: R,
+    a: (Vec3<R>, R::Mask),
+    b: (Vec3<R>, R::Mask),
+) -> (Vec3<R>, R::Mask) {
+    let choose_a = u2.lt(p);
+    let wi = select_vec(choose_a, a.0, b.0);
+    (wi, (choose_a & a.1) | (!choose_a & b.1))
 }
 
 /// The density of [`sample_pair`]: `p·pa(wi) + (1 − p)·pb(wi)`, `0` below the horizon.
@@ -326,6 +345,12 @@ pub(crate) fn pdf_pair<R: Real>(
     pdf_a: impl Fn(Vec3<R>) -> R,
     pdf_b: impl Fn(Vec3<R>) -> R,
 ) -> R {
+    pdf_pair_of(p, wo, wi, pdf_a(wi), pdf_b(wi))
+}
+
+/// [`pdf_pair`] from the parts' densities at `wi`.
+#[inline(always)]
+pub(crate) fn pdf_pair_of<R: Real>(p: R, wo: Vec3<R>, wi: Vec3<R>, pa: R, pb: R) -> R {
     let ok = wi.z.gt(R::zero()) & wo.z.gt(R::zero());
-    R::select(ok, mix(p, pdf_a(wi), pdf_b(wi)), R::zero())
+    R::select(ok, mix(p, pa, pb), R::zero())
 }
