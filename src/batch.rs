@@ -120,6 +120,19 @@ impl<'a> Directions<'a> {
         self.x.len()
     }
 
+    /// [`Directions::len`], checking that the three slices have it (the fields are public, so
+    /// a value need not come from [`Directions::new`]): the entry points call it before the
+    /// explicit-lane kernels load `n` lanes of every component.
+    #[inline]
+    pub(crate) fn checked_len(&self) -> usize {
+        let n = self.x.len();
+        assert!(
+            self.y.len() == n && self.z.len() == n,
+            "Directions: component slices differ in length"
+        );
+        n
+    }
+
     /// Whether there are no directions.
     #[inline]
     #[must_use]
@@ -338,7 +351,9 @@ mod wide_form {
 /// for bit. The forms differ only where a material opted in
 /// ([`crate::fresnel::Conductor::share_divisions`]): a model without such a term gives the
 /// same bits on every CPU. The batch samplers ([`sample_with`], [`sample`]) choose the same
-/// way; the pipelined passes run the [`F32Fma`] form everywhere.
+/// way; the pipelined passes, and the explicit lanes of a model with
+/// [`BatchBrdf::EXPLICIT_LANES`], run the [`F32Fma`] form everywhere (the lanes never share
+/// a division).
 #[must_use]
 pub fn shares_divisions() -> bool {
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
@@ -364,8 +379,8 @@ fn checked_len<const N: usize>(
     wo: &Directions<'_>,
     out: &[&mut [f32]; N],
 ) -> usize {
-    let n = wi.len();
-    assert!(wo.len() == n, "batch: wi and wo differ in length");
+    let n = wi.checked_len();
+    assert!(wo.checked_len() == n, "batch: wi and wo differ in length");
     assert!(
         out.iter().all(|c| c.len() == n),
         "batch: output and input differ in length"
@@ -1255,8 +1270,9 @@ mod mixture_parts {
     }
 
     /// `out[j] = pdf(wo[j], wi[j])` ([`SampleBrdf::pdf`]) with instruction set `isa` (available),
-    /// on the form [`sample_with`]'s one-lane loops run, so the densities of its samples bit for
-    /// bit. Crate-private: the densities of a run-time mixture's parts.
+    /// on the form [`sample_with`] runs (explicit lanes for a model with
+    /// [`BatchBrdf::EXPLICIT_LANES`]), so the densities of its samples bit for bit. Panics if
+    /// `isa` is not available. Crate-private: the densities of a run-time mixture's parts.
     pub(crate) fn pdf_with<B, const N: usize>(
         isa: Isa,
         brdf: &B,
@@ -1268,7 +1284,11 @@ mod mixture_parts {
         B::Fused: SampleBrdf<F32Fma, N>,
         B::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
     {
-        assert!(wo.len() == out.len() && wi.len() == out.len());
+        assert!(
+            isa.is_available(),
+            "batch: {isa:?} is not available on this CPU"
+        );
+        assert!(wo.checked_len() == out.len() && wi.checked_len() == out.len());
         map_with!(
             isa,
             brdf,
@@ -1290,7 +1310,11 @@ mod mixture_parts {
         B::Fused: SampleBrdf<F32Fma, N>,
         B::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
     {
-        assert!(wo.len() == out.len());
+        assert!(
+            isa.is_available(),
+            "batch: {isa:?} is not available on this CPU"
+        );
+        assert!(wo.checked_len() == out.len());
         map_with!(
             isa,
             brdf,
@@ -1423,7 +1447,7 @@ where
     B::Fused: SampleBrdf<F32Fma, N>,
     B::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
 {
-    let n = wo.len();
+    let n = wo.checked_len();
     assert!(
         u.iter().all(|s| s.len() == n),
         "batch: u and wo differ in length"

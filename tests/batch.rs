@@ -676,3 +676,85 @@ fn hardware_estimate_sampling_within_a_few_ulp_of_exact() {
         worst[0], worst[1]
     );
 }
+
+/// A `Directions` built by hand (its fields are public) whose `y` or `z` is shorter than `x`
+/// is rejected by the entry points with a panic, before any kernel loads a lane.
+#[test]
+fn hand_built_directions_with_short_components_are_rejected() {
+    use brdf::material::Material;
+    let (long, short) = (vec![0.0f32; 33], vec![1.0f32; 17]);
+    let up = Directions::new(&long, &long, &long);
+    let bad = Directions {
+        x: &long,
+        y: &long,
+        z: &short,
+    };
+    let gold = Material::from(CookTorrance::new(
+        brdf::ndf::AnyNdf::from(GgxIsotropic::<f32>::new(0.2).unwrap()),
+        brdf::fresnel::AnyFresnel::from(
+            Conductor::<f32, 3>::from_preset(ior::Preset::Gold).unwrap(),
+        ),
+        brdf::masking::AnyMasking::from(SmithSeparable),
+    ));
+    for isa in Isa::ALL.into_iter().filter(|i| i.is_available()) {
+        let eval = std::panic::catch_unwind(|| {
+            let mut f = [vec![0.0f32; 33], vec![0.0f32; 33], vec![0.0f32; 33]];
+            let [a, b, c] = &mut f;
+            let _ = batch::eval_with(isa, &gold, bad, up, [a, b, c]);
+        });
+        assert!(eval.is_err(), "{isa:?}: eval_with accepted a short z");
+        let sample = std::panic::catch_unwind(|| {
+            let mut v = vec![vec![0.0f32; 33]; 7];
+            let (head, w) = v.split_at_mut(4);
+            let [x, y, z, pdf] = head else { unreachable!() };
+            let [w0, w1, w2] = w else { unreachable!() };
+            let mut out = batch::SampleOut {
+                x,
+                y,
+                z,
+                pdf,
+                weight: [w0, w1, w2],
+            };
+            let u = [&long[..], &long[..], &long[..]];
+            let _ = batch::sample_with(isa, &gold, bad, u, &mut out);
+        });
+        assert!(sample.is_err(), "{isa:?}: sample_with accepted a short z");
+    }
+}
+
+/// `Material::sample_batch` is a safe method: called directly with an instruction set the CPU
+/// lacks it declines (`false`) without running a kernel, and with one it has it samples.
+#[test]
+fn material_sample_batch_declines_unavailable_instruction_sets() {
+    use brdf::SampleBrdf;
+    use brdf::material::Material;
+    let plastic = Material::Sum(vec![
+        Material::from(Lambert::new([0.2_f32, 0.3, 0.4]).unwrap()),
+        Material::from(Lambert::new([0.1_f32, 0.1, 0.1]).unwrap()),
+    ]);
+    let (x, z) = (vec![0.0f32; 20], vec![1.0f32; 20]);
+    let u = vec![0.5f32; 20];
+    for isa in Isa::ALL {
+        let mut v = vec![vec![0.0f32; 20]; 7];
+        let (head, w) = v.split_at_mut(4);
+        let [ox, oy, oz, pdf] = head else {
+            unreachable!()
+        };
+        let [w0, w1, w2] = w else { unreachable!() };
+        let mut out = batch::SampleOut {
+            x: ox,
+            y: oy,
+            z: oz,
+            pdf,
+            weight: [w0, w1, w2],
+        };
+        let ran = plastic.sample_batch(isa, Directions::new(&x, &x, &z), [&u, &u, &u], &mut out);
+        assert_eq!(ran, isa.is_available(), "{isa:?}");
+        if ran {
+            assert!(
+                v[3].iter().all(|&p| p > 0.0),
+                "{isa:?}: the samples are valid"
+            );
+        }
+    }
+}

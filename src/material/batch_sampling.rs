@@ -8,7 +8,9 @@
 //! value through its batch evaluation, and the choice, the mixture density and the weight in
 //! plain passes with the same functions as the per-sample sampler. So the samples are those
 //! of [`SampleBrdf::sample`](crate::SampleBrdf::sample) on the form the batch loops run, bit
-//! for bit (`tests/batch.rs`).
+//! for bit (`tests/batch.rs`), except that a part with
+//! [`HardwareEstimate`](crate::fast::HardwareEstimate) gets the estimates on AVX-512 (within
+//! a few ULP, as in every batch loop).
 //!
 //! The passes' arithmetic (`first_probability`, `split_u2`, `choose_pair`, `pdf_pair_of`,
 //! `finish`) is divisions, products, sums, comparisons and selections only, which round the

@@ -373,7 +373,9 @@ macro_rules! models {
             /// their batch kernels (nested mixtures recursively), its value through its batch
             /// evaluation, then the choice and the weight per sample with the functions of
             /// the per-sample sampler (the same bits as `sample` on the form the batch loops
-            /// run; `tests/batch.rs`).
+            /// run, `tests/batch.rs`; a `HardwareEstimate` part aside, which gets the
+            /// AVX-512 estimates as in every batch loop). Returns `false` if `isa` is not
+            /// available.
             #[inline]
             fn sample_batch(
                 &self,
@@ -382,10 +384,11 @@ macro_rules! models {
                 u: [&[f32]; 3],
                 out: &mut crate::batch::SampleOut<'_, 3>,
             ) -> bool {
+                // A safe method: `isa` is checked here too (the mixtures' kernels trust it).
                 let Some(m) = (self as &dyn core::any::Any).downcast_ref::<Material<f32>>() else {
                     return false;
                 };
-                m.sample_batch_f32(isa, wo, u, out)
+                isa.is_available() && m.sample_batch_f32(isa, wo, u, out)
             }
         }
 

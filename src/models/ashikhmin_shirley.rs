@@ -109,6 +109,7 @@ impl<R: Real, const N: usize> Brdf<R, N> for AshikhminShirley<R, N> {
     fn eval(&self, wi: Vec3<R>, wo: Vec3<R>) -> [R; N] {
         let (m, wi, wo) = safe_dirs(wi, wo);
         let (h, cos_d) = half_and_cos_d::<crate::fast::ExactSqrt, R>(wi, wo);
+        let cos_d = cos_d.min(R::one());
         let e = crate::ndf::ashikhmin_shirley_exponent(self.nu, self.nv, h);
         let den = (cos_d * wi.z.max(wo.z)).max(R::from_f64(DENOM_FLOOR));
         let lobe = self.spec_k * h.z.saturate().pow(e) / den;

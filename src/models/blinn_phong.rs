@@ -804,7 +804,14 @@ impl<R: Real, const N: usize, S: SqrtFn> SampleBrdf<R, N> for ClassicBlinnPhong<
     #[inline(always)]
     fn sample(&self, wo: Vec3<R>, u: [R; 3]) -> Sample<R, N> {
         let (pd, lobe) = self.mixture(wo);
-        sample_diffuse_and_half(&lobe, pd, wo, u, |wi| self.eval(wi, wo))
+        sample_diffuse_and_half(
+            &lobe,
+            pd,
+            wo,
+            u,
+            #[inline(always)]
+            |wi| self.eval(wi, wo),
+        )
     }
 
     #[inline(always)]
@@ -883,6 +890,7 @@ impl<R: Real, const N: usize, V: SpecularDenominator, P: PowFn> SampleBrdf<R, N>
         let f = self.eval(wi, wo);
         let (_, k) = self.lobe_parts(wi, wo);
         let (_, cos_d) = half_and_cos_d::<ExactSqrt, R>(wi, wo);
+        let cos_d = cos_d.min(R::one());
         let s = self.half_shininess + self.half_shininess;
         let g = R::from_f64(8.0 * core::f64::consts::PI) * cos_d * wi.z / (s + R::one());
         let weight = crate::real::channels(

@@ -393,9 +393,11 @@ pub(crate) fn unit_channels<S: crate::Scalar, const N: usize>(
 /// computed as `|wi + wo| / 2` — exactly symmetric in `wi` and `wo` and free of the
 /// cancellation of a dot product near `θd = π/2`. `|h|` and `1/|h|` come from the model's
 /// [`SqrtFn`](crate::fast::SqrtFn) `S`. Lanes whose sum underflows to zero get the normal
-/// (and `cos θd = 0`). `cos θd` may exceed 1 by a rounding (unit inputs, `|h| ≤ 2`): every
-/// consumer clamps it (the Fresnel terms, `schlick_weight`, the pdf's floor), so it is not
-/// clamped here (one operation fewer on GGX's hottest path).
+/// (and `cos θd = 0`). `cos θd` may exceed 1 by a rounding (unit inputs, `|h| ≤ 2`) and is
+/// not clamped here (one operation fewer on GGX's hottest path): the Fresnel terms and
+/// `schlick_weight` clamp it themselves, and the other consumers (Ashikhmin-Shirley's
+/// denominator, Blinn-Phong's sample weight, `reflected_pdf`) take `min(cos θd, 1)`, so every
+/// model's values are those of the clamped form.
 #[inline(always)]
 pub(crate) fn half_and_cos_d<S: crate::fast::SqrtFn, R: Real>(
     wi: Vec3<R>,

@@ -210,7 +210,7 @@ pub(crate) fn reflect<R: Real>(wo: Vec3<R>, wm: Vec3<R>) -> (Vec3<R>, R::Mask) {
 pub(crate) fn reflected_pdf<R: Real, H: HalfLobe<R>>(lobe: &H, wo: Vec3<R>, wi: Vec3<R>) -> R {
     let ok = wi.z.gt(R::zero()) & wo.z.gt(R::zero());
     let (wm, cos_d) = half_and_cos_d::<ExactSqrt, R>(wi, wo);
-    let p = lobe.density(wm) / (R::from_f64(4.0) * cos_d).max(R::from_f64(PDF_FLOOR));
+    let p = lobe.density(wm) / (R::from_f64(4.0) * cos_d.min(R::one())).max(R::from_f64(PDF_FLOOR));
     R::select(ok, p, R::zero())
 }
 

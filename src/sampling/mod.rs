@@ -124,8 +124,10 @@ pub trait SampleBrdf<R: Real, const N: usize>: Brdf<R, N> {
     /// [`sample`](crate::batch::sample)) try first: it draws one sample per `wo[j]` from
     /// `(u[0][j], u[1][j], u[2][j])` with instruction set `isa`, writes it to `out` as
     /// `sample_with` does and returns `true`, or returns `false` without writing, and the
-    /// entry point runs its own loops. Only the batch path calls it, on the `f32` model; the
-    /// caller has checked that `isa` is available and that every slice has the same length.
+    /// entry point runs its own loops. The batch path calls it on the `f32` model, having
+    /// checked that `isa` is available and that every slice has the same length; it is a safe
+    /// method, so an implementation that runs `#[target_feature]` code must not rely on that
+    /// (`Material`'s returns `false` for an unavailable `isa`).
     ///
     /// The default returns `false`. A wrapper that changes the samples (another sampler, a
     /// compensation lobe) must not forward it. The counterpart of
