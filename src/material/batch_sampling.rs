@@ -33,34 +33,36 @@ use crate::sampling::lobes::{choose_pair, finish, first_probability, pdf_pair_of
 /// The mixtures as [`Layered`] holds them in a material.
 type LayeredMaterial = Layered<Material<f32>, Material<f32>, AnyFresnel<f32>>;
 
-/// Owned output arrays of `n` samples (directions, densities, three weights).
+/// Owned output arrays of `n` samples in one allocation: `wi.x`, `wi.y`, `wi.z`, the density
+/// and three weights, each `n` long.
 struct Samples {
-    x: Vec<f32>,
-    y: Vec<f32>,
-    z: Vec<f32>,
-    pdf: Vec<f32>,
-    weight: [Vec<f32>; 3],
+    buf: Vec<f32>,
+    n: usize,
 }
 
 impl Samples {
     fn new(n: usize) -> Self {
         Samples {
-            x: vec![0.0; n],
-            y: vec![0.0; n],
-            z: vec![0.0; n],
-            pdf: vec![0.0; n],
-            weight: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            buf: vec![0.0; 7 * n],
+            n,
         }
     }
 
+    /// The `k`-th array.
+    fn at(&self, k: usize) -> &[f32] {
+        &self.buf[k * self.n..(k + 1) * self.n]
+    }
+
     fn out(&mut self) -> SampleOut<'_, 3> {
-        let [w0, w1, w2] = &mut self.weight;
+        let mut parts = self.buf.chunks_exact_mut(self.n.max(1));
+        let mut next = || parts.next().unwrap_or_default();
+        let (x, y, z, pdf) = (next(), next(), next(), next());
         SampleOut {
-            x: &mut self.x,
-            y: &mut self.y,
-            z: &mut self.z,
-            pdf: &mut self.pdf,
-            weight: [w0, w1, w2],
+            x,
+            y,
+            z,
+            pdf,
+            weight: [next(), next(), next()],
         }
     }
 }
@@ -131,7 +133,6 @@ fn sum_sample(
         Some((last, rest)) => {
             let p = probabilities(&sum_estimate(rest, isa, wo), &estimate(last, isa, wo));
             mix_samples(
-                isa,
                 wo,
                 u,
                 &p,
@@ -157,7 +158,6 @@ fn layered_sample(
 ) {
     let (s, d) = layered_estimates(l, isa, wo);
     mix_samples(
-        isa,
         wo,
         u,
         &probabilities(&s, &d),
@@ -183,7 +183,6 @@ fn probabilities(ea: &[f32], eb: &[f32]) -> Vec<f32> {
 /// kept, its density `p·pa + (1 − p)·pb` and the material's value at it, then `finish`.
 #[allow(clippy::too_many_arguments)]
 fn mix_samples(
-    isa: Isa,
     wo: Directions<'_>,
     u: [&[f32]; 3],
     p: &[f32],
@@ -194,7 +193,6 @@ fn mix_samples(
     eval: impl FnOnce(Directions<'_>, Directions<'_>, [&mut [f32]; 3]),
     out: &mut SampleOut<'_, 3>,
 ) {
-    let _ = isa;
     let n = wo.len();
     let (ua, ub): (Vec<f32>, Vec<f32>) =
         p.iter().zip(u[2]).map(|(&p, &u2)| split_u2(p, u2)).unzip();
@@ -205,9 +203,13 @@ fn mix_samples(
     // (a sample is valid exactly where its density is > 0: `Sample::new`).
     let mut wi = [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]];
     let mut valid = vec![false; n];
+    let (sa, sb): ([&[f32]; 4], [&[f32]; 4]) = (
+        core::array::from_fn(|k| a.at(k)),
+        core::array::from_fn(|k| b.at(k)),
+    );
     for j in 0..n {
-        let at = |s: &Samples| (Vec3::new(s.x[j], s.y[j], s.z[j]), s.pdf[j] > 0.0);
-        let (w, v) = choose_pair(p[j], u[2][j], at(&a), at(&b));
+        let at = |s: &[&[f32]; 4]| (Vec3::new(s[0][j], s[1][j], s[2][j]), s[3][j] > 0.0);
+        let (w, v) = choose_pair(p[j], u[2][j], at(&sa), at(&sb));
         [wi[0][j], wi[1][j], wi[2][j]] = [w.x, w.y, w.z];
         valid[j] = v;
     }
