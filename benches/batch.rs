@@ -606,6 +606,36 @@ fn bench_material(c: &mut Criterion) {
         &wo,
         &mut out,
     );
+    // The same with the channels sharing one division (where `batch::shares_divisions()`):
+    // the static model on the one-lane loop, the material on explicit lanes.
+    let shared = CookTorrance::new(
+        gold.ndf,
+        gold.fresnel.share_divisions().unwrap(),
+        gold.masking,
+    );
+    let runtime_shared = Material::from(CookTorrance::new(
+        AnyNdf::from(shared.ndf),
+        AnyFresnel::from(shared.fresnel),
+        AnyMasking::from(shared.masking),
+    ));
+    bench_isas(
+        &mut g,
+        "gold_shared_static",
+        batch::eval_with,
+        &shared,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    bench_isas(
+        &mut g,
+        "gold_shared_material",
+        batch::eval_with,
+        &runtime_shared,
+        &wi,
+        &wo,
+        &mut out,
+    );
     let lambert = Lambert::<f32, 3>::new([0.2, 0.3, 0.4]).unwrap();
     let runtime_lambert = Material::from(lambert);
     bench_isas(

@@ -201,6 +201,24 @@ fn material(c: &mut Criterion) {
     bench_sampler(c, group, "gold_static", &gold);
     bench_sampler(c, group, "gold_runtime_parts", &runtime_parts);
     bench_sampler(c, group, "gold_material", &Material::from(runtime_parts));
+    // The channels sharing one division where `batch::shares_divisions()`.
+    let shared = CookTorrance::new(
+        gold.ndf,
+        gold.fresnel.share_divisions().unwrap(),
+        gold.masking,
+    );
+    let shared_parts = CookTorrance::new(
+        AnyNdf::from(shared.ndf),
+        AnyFresnel::from(shared.fresnel),
+        AnyMasking::from(shared.masking),
+    );
+    bench_sampler(c, group, "gold_shared_static", &shared);
+    bench_sampler(
+        c,
+        group,
+        "gold_shared_material",
+        &Material::from(shared_parts),
+    );
     let lambert = Lambert::<f32, 3>::new([0.2, 0.3, 0.4]).unwrap();
     let coat = CookTorrance::new(
         GgxIsotropic::new(0.2_f32).unwrap(),

@@ -29,8 +29,9 @@
 //! [`eval_with`], [`eval`], [`eval_glam`], [`sample_with`] and [`sample`]
 //! ([`Splat::EXPLICIT_LANES`]): on explicit
 //! registers of lanes (16 on [`Isa::Avx512`], 8 on [`Isa::Avx2Fma`]), a register of pairs per
-//! iteration and the remainder under a lane mask, every operation the one of [`F32Fma`] (so
-//! `eval` on the [`F32Fma`] form still gives the bits), except that
+//! iteration and the remainder under a lane mask, every operation the one of [`F32Fma`], or
+//! of [`F32FmaSharedDiv`] where [`shares_divisions`] (so `eval` on the form the one-lane
+//! kernels would run still gives the bits), except that
 //!
 //! * a model that takes a square root or division through [`crate::fast::HardwareEstimate`]
 //!   gets `vrsqrt14ps` / `vrcp14ps` with one refinement step on [`Isa::Avx512`] (each within
@@ -70,7 +71,7 @@
 use core::marker::PhantomData;
 
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
-use crate::real::lanes::{Ymm, Zmm};
+use crate::real::lanes::{Avx2, Avx512, Lanes};
 use crate::real::{F32Fma, F32FmaSharedDiv, Splat};
 use crate::sampling::SampleBrdf;
 use crate::{Real, Vec3, models::Brdf};
@@ -257,34 +258,56 @@ where
 /// has it.
 mod wide_form {
     use crate::real::Splat;
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    use crate::real::lanes::{Ymm, YmmShared, Zmm, ZmmShared};
 
     /// See the module docs.
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     pub trait WideForm<const N: usize> {
-        /// The same model on [`crate::real::lanes::Zmm`] (16 lanes, AVX-512).
-        type Wide16: crate::Brdf<crate::real::lanes::Zmm, N>;
-        /// The same model on [`crate::real::lanes::Ymm`] (8 lanes, AVX2).
-        type Wide8: crate::Brdf<crate::real::lanes::Ymm, N>;
+        /// The same model on [`Zmm`] (16 lanes, AVX-512).
+        type Wide16: crate::Brdf<Zmm, N>;
+        /// The same model on [`Ymm`] (8 lanes, AVX2).
+        type Wide8: crate::Brdf<Ymm, N>;
+        /// The same model on [`ZmmShared`] (16 lanes sharing divisions).
+        type Wide16Shared: crate::Brdf<ZmmShared, N>;
+        /// The same model on [`YmmShared`] (8 lanes sharing divisions).
+        type Wide8Shared: crate::Brdf<YmmShared, N>;
         /// The 16-lane form, constants keeping their bits.
         fn wide16(&self) -> Self::Wide16;
         /// The 8-lane form, constants keeping their bits.
         fn wide8(&self) -> Self::Wide8;
+        /// The 16-lane form sharing divisions, constants keeping their bits.
+        fn wide16_shared(&self) -> Self::Wide16Shared;
+        /// The 8-lane form sharing divisions, constants keeping their bits.
+        fn wide8_shared(&self) -> Self::Wide8Shared;
     }
 
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     impl<B: Splat, const N: usize> WideForm<N> for B
     where
-        B::On<crate::real::lanes::Zmm>: crate::Brdf<crate::real::lanes::Zmm, N>,
-        B::On<crate::real::lanes::Ymm>: crate::Brdf<crate::real::lanes::Ymm, N>,
+        B::On<Zmm>: crate::Brdf<Zmm, N>,
+        B::On<Ymm>: crate::Brdf<Ymm, N>,
+        B::On<ZmmShared>: crate::Brdf<ZmmShared, N>,
+        B::On<YmmShared>: crate::Brdf<YmmShared, N>,
     {
-        type Wide16 = B::On<crate::real::lanes::Zmm>;
-        type Wide8 = B::On<crate::real::lanes::Ymm>;
+        type Wide16 = B::On<Zmm>;
+        type Wide8 = B::On<Ymm>;
+        type Wide16Shared = B::On<ZmmShared>;
+        type Wide8Shared = B::On<YmmShared>;
         #[inline]
         fn wide16(&self) -> Self::Wide16 {
             self.splat()
         }
         #[inline]
         fn wide8(&self) -> Self::Wide8 {
+            self.splat()
+        }
+        #[inline]
+        fn wide16_shared(&self) -> Self::Wide16Shared {
+            self.splat()
+        }
+        #[inline]
+        fn wide8_shared(&self) -> Self::Wide8Shared {
             self.splat()
         }
     }
@@ -299,30 +322,50 @@ mod wide_form {
     /// The model's explicit-lane forms as samplers (the batch samplers' explicit lanes).
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     pub trait WideSample<const N: usize> {
-        /// The same model on [`crate::real::lanes::Zmm`] (16 lanes, AVX-512).
-        type Sampler16: crate::SampleBrdf<crate::real::lanes::Zmm, N>;
-        /// The same model on [`crate::real::lanes::Ymm`] (8 lanes, AVX2).
-        type Sampler8: crate::SampleBrdf<crate::real::lanes::Ymm, N>;
+        /// The same model on [`Zmm`] (16 lanes, AVX-512).
+        type Sampler16: crate::SampleBrdf<Zmm, N>;
+        /// The same model on [`Ymm`] (8 lanes, AVX2).
+        type Sampler8: crate::SampleBrdf<Ymm, N>;
+        /// The same model on [`ZmmShared`] (16 lanes sharing divisions).
+        type Sampler16Shared: crate::SampleBrdf<ZmmShared, N>;
+        /// The same model on [`YmmShared`] (8 lanes sharing divisions).
+        type Sampler8Shared: crate::SampleBrdf<YmmShared, N>;
         /// The 16-lane form, constants keeping their bits.
         fn sampler16(&self) -> Self::Sampler16;
         /// The 8-lane form, constants keeping their bits.
         fn sampler8(&self) -> Self::Sampler8;
+        /// The 16-lane form sharing divisions, constants keeping their bits.
+        fn sampler16_shared(&self) -> Self::Sampler16Shared;
+        /// The 8-lane form sharing divisions, constants keeping their bits.
+        fn sampler8_shared(&self) -> Self::Sampler8Shared;
     }
 
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     impl<B: Splat, const N: usize> WideSample<N> for B
     where
-        B::On<crate::real::lanes::Zmm>: crate::SampleBrdf<crate::real::lanes::Zmm, N>,
-        B::On<crate::real::lanes::Ymm>: crate::SampleBrdf<crate::real::lanes::Ymm, N>,
+        B::On<Zmm>: crate::SampleBrdf<Zmm, N>,
+        B::On<Ymm>: crate::SampleBrdf<Ymm, N>,
+        B::On<ZmmShared>: crate::SampleBrdf<ZmmShared, N>,
+        B::On<YmmShared>: crate::SampleBrdf<YmmShared, N>,
     {
-        type Sampler16 = B::On<crate::real::lanes::Zmm>;
-        type Sampler8 = B::On<crate::real::lanes::Ymm>;
+        type Sampler16 = B::On<Zmm>;
+        type Sampler8 = B::On<Ymm>;
+        type Sampler16Shared = B::On<ZmmShared>;
+        type Sampler8Shared = B::On<YmmShared>;
         #[inline]
         fn sampler16(&self) -> Self::Sampler16 {
             self.splat()
         }
         #[inline]
         fn sampler8(&self) -> Self::Sampler8 {
+            self.splat()
+        }
+        #[inline]
+        fn sampler16_shared(&self) -> Self::Sampler16Shared {
+            self.splat()
+        }
+        #[inline]
+        fn sampler8_shared(&self) -> Self::Sampler8Shared {
             self.splat()
         }
     }
@@ -350,10 +393,10 @@ mod wide_form {
 /// forms by a few ULP (`tests/fresnel.rs`); each kernel equals `eval` on its own form bit
 /// for bit. The forms differ only where a material opted in
 /// ([`crate::fresnel::Conductor::share_divisions`]): a model without such a term gives the
-/// same bits on every CPU. The batch samplers ([`sample_with`], [`sample`]) choose the same
-/// way; the pipelined passes, and the explicit lanes of a model with
-/// [`BatchBrdf::EXPLICIT_LANES`], run the [`F32Fma`] form everywhere (the lanes never share
-/// a division).
+/// same bits on every CPU. The batch samplers ([`sample_with`], [`sample`]) and the explicit
+/// lanes of a model with [`BatchBrdf::EXPLICIT_LANES`] (run-time parts and materials, with
+/// [`crate::fresnel::AnyFresnel::ConductorShared`]) choose the same way; the pipelined
+/// passes run the [`F32Fma`] form everywhere.
 #[must_use]
 pub fn shares_divisions() -> bool {
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
@@ -604,25 +647,25 @@ fn lanes_loop<Bk, B, const N: usize>(
 /// [`lanes_loop`] on 16 AVX-512 lanes.
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
 #[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
-fn kernel_avx512_lanes16<B: Brdf<Zmm, N>, const N: usize>(
+fn kernel_avx512_lanes16<const S: bool, B: Brdf<Lanes<Avx512<S>>, N>, const N: usize>(
     model: B,
     wi: Directions<'_>,
     wo: Directions<'_>,
     out: [&mut [f32]; N],
 ) {
-    lanes_loop::<crate::real::lanes::Avx512, B, N>(model, wi, wo, out)
+    lanes_loop::<Avx512<S>, B, N>(model, wi, wo, out)
 }
 
 /// [`lanes_loop`] on 8 AVX2 lanes.
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
 #[target_feature(enable = "avx2,fma")]
-fn kernel_avx2_lanes8<B: Brdf<Ymm, N>, const N: usize>(
+fn kernel_avx2_lanes8<const S: bool, B: Brdf<Lanes<Avx2<S>>, N>, const N: usize>(
     model: B,
     wi: Directions<'_>,
     wo: Directions<'_>,
     out: [&mut [f32]; N],
 ) {
-    lanes_loop::<crate::real::lanes::Avx2, B, N>(model, wi, wo, out)
+    lanes_loop::<Avx2<S>, B, N>(model, wi, wo, out)
 }
 
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
@@ -712,9 +755,13 @@ pub fn eval_with<B: BatchBrdf<N>, const N: usize>(
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     if B::EXPLICIT_LANES && isa != Isa::Portable {
         // SAFETY: `is_available` checked at run time that the CPU has these features.
-        match isa {
-            Isa::Avx512 => unsafe { kernel_avx512_lanes16(brdf.wide16(), wi, wo, out) },
-            _ => unsafe { kernel_avx2_lanes8(brdf.wide8(), wi, wo, out) },
+        match (isa, shares_divisions()) {
+            (Isa::Avx512, false) => unsafe { kernel_avx512_lanes16(brdf.wide16(), wi, wo, out) },
+            (Isa::Avx512, true) => unsafe {
+                kernel_avx512_lanes16(brdf.wide16_shared(), wi, wo, out)
+            },
+            (_, false) => unsafe { kernel_avx2_lanes8(brdf.wide8(), wi, wo, out) },
+            (_, true) => unsafe { kernel_avx2_lanes8(brdf.wide8_shared(), wi, wo, out) },
         }
         return Ok(());
     }
@@ -1127,11 +1174,19 @@ mod mixture_parts {
             if B::EXPLICIT_LANES && isa != Isa::Portable {
                 // SAFETY: the caller checked with `is_available` that the CPU has these
                 // features.
-                match isa {
-                    Isa::Avx512 => unsafe {
+                match (isa, shares_divisions()) {
+                    (Isa::Avx512, false) => unsafe {
                         map_kernel_avx512_lanes16(brdf.sampler16(), $op, &inputs, out)
                     },
-                    _ => unsafe { map_kernel_avx2_lanes8(brdf.sampler8(), $op, &inputs, out) },
+                    (Isa::Avx512, true) => unsafe {
+                        map_kernel_avx512_lanes16(brdf.sampler16_shared(), $op, &inputs, out)
+                    },
+                    (_, false) => unsafe {
+                        map_kernel_avx2_lanes8(brdf.sampler8(), $op, &inputs, out)
+                    },
+                    (_, true) => unsafe {
+                        map_kernel_avx2_lanes8(brdf.sampler8_shared(), $op, &inputs, out)
+                    },
                 }
                 return;
             }
@@ -1226,25 +1281,29 @@ mod mixture_parts {
     /// [`lanes_map_loop`] on 16 AVX-512 lanes.
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     #[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
-    fn map_kernel_avx512_lanes16<B: SampleBrdf<Zmm, N>, const N: usize>(
+    fn map_kernel_avx512_lanes16<
+        const S: bool,
+        B: SampleBrdf<Lanes<Avx512<S>>, N>,
+        const N: usize,
+    >(
         model: B,
         op: MapOp,
         inputs: &[&[f32]],
         out: &mut [f32],
     ) {
-        lanes_map_loop::<crate::real::lanes::Avx512, B, N>(model, op, inputs, out)
+        lanes_map_loop::<Avx512<S>, B, N>(model, op, inputs, out)
     }
 
     /// [`lanes_map_loop`] on 8 AVX2 lanes.
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     #[target_feature(enable = "avx2,fma")]
-    fn map_kernel_avx2_lanes8<B: SampleBrdf<Ymm, N>, const N: usize>(
+    fn map_kernel_avx2_lanes8<const S: bool, B: SampleBrdf<Lanes<Avx2<S>>, N>, const N: usize>(
         model: B,
         op: MapOp,
         inputs: &[&[f32]],
         out: &mut [f32],
     ) {
-        lanes_map_loop::<crate::real::lanes::Avx2, B, N>(model, op, inputs, out)
+        lanes_map_loop::<Avx2<S>, B, N>(model, op, inputs, out)
     }
 
     /// Runs `l` compiled for `isa`'s FMA instruction sets (available: the caller checked).
@@ -1392,25 +1451,29 @@ fn lanes_sample_loop<Bk, B, const N: usize>(
 /// [`lanes_sample_loop`] on 16 AVX-512 lanes.
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
 #[target_feature(enable = "avx512f,avx512vl,avx2,fma")]
-fn sample_kernel_avx512_lanes16<B: SampleBrdf<Zmm, N>, const N: usize>(
+fn sample_kernel_avx512_lanes16<
+    const S: bool,
+    B: SampleBrdf<Lanes<Avx512<S>>, N>,
+    const N: usize,
+>(
     model: B,
     wo: Directions<'_>,
     u: [&[f32]; 3],
     out: &mut SampleOut<'_, N>,
 ) {
-    lanes_sample_loop::<crate::real::lanes::Avx512, B, N>(model, wo, u, out)
+    lanes_sample_loop::<Avx512<S>, B, N>(model, wo, u, out)
 }
 
 /// [`lanes_sample_loop`] on 8 AVX2 lanes.
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
 #[target_feature(enable = "avx2,fma")]
-fn sample_kernel_avx2_lanes8<B: SampleBrdf<Ymm, N>, const N: usize>(
+fn sample_kernel_avx2_lanes8<const S: bool, B: SampleBrdf<Lanes<Avx2<S>>, N>, const N: usize>(
     model: B,
     wo: Directions<'_>,
     u: [&[f32]; 3],
     out: &mut SampleOut<'_, N>,
 ) {
-    lanes_sample_loop::<crate::real::lanes::Avx2, B, N>(model, wo, u, out)
+    lanes_sample_loop::<Avx2<S>, B, N>(model, wo, u, out)
 }
 
 /// Draws one `wi` per `wo[i]` from the uniform numbers `(u[0][i], u[1][i], u[2][i])` with a
@@ -1420,8 +1483,7 @@ fn sample_kernel_avx2_lanes8<B: SampleBrdf<Ymm, N>, const N: usize>(
 ///
 /// [`Isa::Portable`] results equal [`SampleBrdf::sample`] on `brdf` bit for bit; the FMA
 /// variants equal `sample` on [`BatchBrdf::fused`] (or [`BatchBrdf::shared_div`] where
-/// [`shares_divisions`], except on the explicit lanes of a model with
-/// [`BatchBrdf::EXPLICIT_LANES`]) bit for bit, as for [`eval_with`] (hardware estimates
+/// [`shares_divisions`]) bit for bit, as for [`eval_with`] (hardware estimates
 /// aside: see the [module docs](self)). A model with a batch sampler of its own
 /// ([`SampleBrdf::sample_batch`], tried first: a run-time
 /// [`Material`](crate::material::Material) of one model) gives the samples of the model it
@@ -1469,9 +1531,15 @@ where
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     if B::EXPLICIT_LANES && isa != Isa::Portable {
         // SAFETY: `is_available` checked at run time that the CPU has these features.
-        match isa {
-            Isa::Avx512 => unsafe { sample_kernel_avx512_lanes16(brdf.sampler16(), wo, u, out) },
-            _ => unsafe { sample_kernel_avx2_lanes8(brdf.sampler8(), wo, u, out) },
+        match (isa, shares_divisions()) {
+            (Isa::Avx512, false) => unsafe {
+                sample_kernel_avx512_lanes16(brdf.sampler16(), wo, u, out)
+            },
+            (Isa::Avx512, true) => unsafe {
+                sample_kernel_avx512_lanes16(brdf.sampler16_shared(), wo, u, out)
+            },
+            (_, false) => unsafe { sample_kernel_avx2_lanes8(brdf.sampler8(), wo, u, out) },
+            (_, true) => unsafe { sample_kernel_avx2_lanes8(brdf.sampler8_shared(), wo, u, out) },
         }
         return Ok(());
     }

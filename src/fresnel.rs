@@ -1558,6 +1558,9 @@ pub enum AnyFresnel<R> {
     Dielectric(Dielectric<R, 3>),
     /// The exact [`Conductor`], a complex IOR per channel.
     Conductor(Conductor<R, 3>),
+    /// The exact [`Conductor`] whose channels share one division on the batch kernels of
+    /// divider-bound cores ([`Conductor::share_divisions`], [`SharedDivision`]).
+    ConductorShared(Conductor<R, 3, ExactSqrt, SharedDivision>),
     /// [`Schlick`]'s approximation with `f0` (and `f90`) per channel.
     Schlick(Schlick<R, 3>),
     /// Hoffman's [`F82Tint`] per channel.
@@ -1573,6 +1576,7 @@ macro_rules! on_any_fresnel {
         match $any {
             AnyFresnel::Dielectric($f) => $e,
             AnyFresnel::Conductor($f) => $e,
+            AnyFresnel::ConductorShared($f) => $e,
             AnyFresnel::Schlick($f) => $e,
             AnyFresnel::F82Tint($f) => $e,
             AnyFresnel::NoFresnel($f) => $e,
@@ -1595,6 +1599,7 @@ macro_rules! any_fresnel_from {
 any_fresnel_from!(
     Dielectric(Dielectric<R, 3>),
     Conductor(Conductor<R, 3>),
+    ConductorShared(Conductor<R, 3, ExactSqrt, SharedDivision>),
     Schlick(Schlick<R, 3>),
     F82Tint(F82Tint<R, 3>),
     NoFresnel(NoFresnel)

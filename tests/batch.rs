@@ -202,14 +202,60 @@ fn shared_division_gold() -> CookTorrance<
     )
 }
 
+/// The shared-division gold with run-time parts: the explicit lanes on the FMA instruction
+/// sets.
+fn shared_division_gold_parts() -> CookTorrance<
+    f32,
+    brdf::ndf::AnyNdf<f32>,
+    brdf::fresnel::AnyFresnel<f32>,
+    brdf::masking::AnyMasking,
+> {
+    let ct = shared_division_gold();
+    CookTorrance::new(
+        brdf::ndf::AnyNdf::from(ct.ndf),
+        brdf::fresnel::AnyFresnel::from(ct.fresnel),
+        brdf::masking::AnyMasking::from(ct.masking),
+    )
+}
+
 /// A conductor whose channels share one division on divider-bound cores: the FMA kernels
-/// equal `eval` on the form they run (`F32FmaSharedDiv` on Intel), and both forms agree.
+/// equal `eval` on the form they run (`F32FmaSharedDiv` on Intel), and both forms agree —
+/// on the one-lane loop (the static model) and on the explicit lanes (run-time parts, and a
+/// `Material` holding them).
 #[test]
 fn every_available_variant_matches_scalar_shared_division_conductor() {
     let ct = shared_division_gold();
+    let parts = shared_division_gold_parts();
+    fn explicit<B: BatchBrdf<3>>(_: &B) -> bool {
+        B::EXPLICIT_LANES
+    }
+    assert!(explicit(&parts) && !explicit(&ct));
+    let material = brdf::material::Material::from(parts);
     for n in [0, 1, 15, 16, 17, 1031] {
         check(&ct, n, 1e-6);
+        check(&parts, n, 1e-6);
+        check(&material, n, 1e-6);
     }
+    // The two forms differ somewhere, so the checks above tell which one a kernel ran.
+    let d = pairs(1031);
+    let differ = (0..1031)
+        .filter(|&i| {
+            let w = |k: usize| [d[k][i], d[k + 1][i], d[k + 2][i]];
+            let (wi, wo) = (w(0), w(3));
+            let f = parts
+                .fused()
+                .eval(wi.map(F32Fma).into(), wo.map(F32Fma).into());
+            let s = parts.shared_div().eval(
+                wi.map(F32FmaSharedDiv).into(),
+                wo.map(F32FmaSharedDiv).into(),
+            );
+            (0..3).any(|c| f[c].0 != s[c].0)
+        })
+        .count();
+    assert!(
+        differ > 100,
+        "{differ} of 1031 pairs differ between the forms"
+    );
 }
 
 /// A model with [`HardwareEstimate`] against the same model with the exact policy, on every
@@ -445,8 +491,8 @@ fn mismatched_lengths_panic() {
 
 /// `batch::sample_with` on every available variant equals `SampleBrdf::sample` bit for bit:
 /// on the `f32` model for the portable loop, on the form the FMA loops run for the FMA loops
-/// (`F32Fma` on the explicit lanes of a model with `EXPLICIT_LANES`, else `F32FmaSharedDiv`
-/// where `batch::shares_divisions()`, else `F32Fma`).
+/// (`F32FmaSharedDiv` where `batch::shares_divisions()`, explicit lanes included, else
+/// `F32Fma`).
 fn check_sample<B, const N: usize>(name: &str, brdf: &B, n: usize) -> usize
 where
     B: batch::BatchSample<N>,
@@ -489,7 +535,7 @@ where
             let (sx, sy, sz, sp, sw): (f32, f32, f32, f32, [f32; N]) = if isa == Isa::Portable {
                 let s = brdf.sample(wo_i, ui);
                 (s.wi.x, s.wi.y, s.wi.z, s.pdf, s.weight)
-            } else if batch::shares_divisions() && !B::EXPLICIT_LANES {
+            } else if batch::shares_divisions() {
                 let d = F32FmaSharedDiv;
                 let s = shared.sample(Vec3::new(d(wo_i.x), d(wo_i.y), d(wo_i.z)), ui.map(d));
                 (s.wi.x.0, s.wi.y.0, s.wi.z.0, s.pdf.0, s.weight.map(|v| v.0))
@@ -521,6 +567,11 @@ fn batch_sampling_equals_scalar_sampling_on_every_isa() {
     // A conductor whose channels share one division where the batch path does (Intel).
     let gold = shared_division_gold();
     assert!(check_sample("gold, shared division", &gold, 1001) >= 1);
+    // The same on explicit lanes: run-time parts and a material of them.
+    let parts = shared_division_gold_parts();
+    assert!(check_sample("gold parts, shared division", &parts, 1001) >= 1);
+    let material = brdf::material::Material::from(parts);
+    assert!(check_sample("gold material, shared division", &material, 1001) >= 1);
 }
 
 /// Sampling with run-time parts (explicit lanes on the FMA instruction sets), a `Material` of

@@ -429,3 +429,49 @@ fn oren_nayar_fujii_reads_and_rejects_as_documented() {
         &["unknown field `alpha`"],
     );
 }
+
+/// `share_divisions = true` in a conductor's description builds the conductor whose channels
+/// share one division (`AnyFresnel::ConductorShared`, equal to
+/// `Conductor::share_divisions()`); the default builds the per-channel one; a channel
+/// outside the shared domain (`k < 0.1`) is rejected naming `k`; and the field
+/// round-trips (written only when `true`).
+#[test]
+fn conductor_descriptions_choose_shared_divisions() {
+    let body = |share: &str| {
+        format!(
+            "ndf = \"ggx\"\nalpha = 0.2\nfresnel = {{ conductor = {{ eta = [0.2, 0.9, 1.1], \
+             k = [3.9, 2.4, 2.2]{share} }} }}"
+        )
+    };
+    let (eta, k) = ([0.2_f32, 0.9, 1.1], [3.9_f32, 2.4, 2.2]);
+    let per_channel = Conductor::new(eta, k).unwrap();
+    let material = |fresnel: AnyFresnel<f32>| -> Material<f32> {
+        CookTorrance::new(
+            AnyNdf::from(GgxIsotropic::new(0.2_f32).unwrap()),
+            fresnel,
+            AnyMasking::SmithHeightCorrelated,
+        )
+        .into()
+    };
+    let shared = toml_desc("cook_torrance", &body(", share_divisions = true"));
+    assert_eq!(
+        shared.build::<f32>().unwrap(),
+        material(AnyFresnel::ConductorShared(
+            per_channel.share_divisions().unwrap()
+        ))
+    );
+    for default in [body(""), body(", share_divisions = false")] {
+        let d = toml_desc("cook_torrance", &default);
+        assert_eq!(
+            d.build::<f32>().unwrap(),
+            material(AnyFresnel::Conductor(per_channel))
+        );
+        assert!(!toml::to_string(&d).unwrap().contains("share_divisions"));
+    }
+    let written = toml::to_string(&shared).unwrap();
+    assert!(written.contains("share_divisions = true"), "{written}");
+    assert_eq!(toml::from_str::<MaterialDesc>(&written).unwrap(), shared);
+    let low_k = "model = \"cook_torrance\"\nndf = \"ggx\"\nalpha = 0.2\nfresnel = { conductor = \
+                 { eta = 1.5, k = 0.05, share_divisions = true } }";
+    rejects(low_k, &["`k`", "0.05"]);
+}

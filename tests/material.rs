@@ -199,6 +199,7 @@ where
     F: Splat + Copy + Into<AnyFresnel<f32>>,
     F::On<f32>: FresnelTerm<f32, 3>,
     F::On<F32Fma>: FresnelTerm<F32Fma, 3>,
+    F::On<brdf::real::F32FmaSharedDiv>: FresnelTerm<brdf::real::F32FmaSharedDiv, 3>,
     F::On<f32x8>: FresnelTerm<f32x8, 3>,
 {
     let any: AnyFresnel<f32> = f.into();
@@ -212,6 +213,7 @@ where
     }
     on!(f32);
     on!(F32Fma);
+    on!(brdf::real::F32FmaSharedDiv);
     on!(f32x8);
 }
 
@@ -287,6 +289,8 @@ proptest! {
         fresnel_forwards("Dielectric", Dielectric::new(1.5).unwrap().channels(), &p);
         fresnel_forwards("Dielectric η < 1", Dielectric::new(0.7).unwrap().channels(), &p);
         fresnel_forwards("Conductor", gold(), &p);
+        let shared = gold().share_divisions().unwrap();
+        fresnel_forwards("Conductor, shared division", shared, &p);
         fresnel_forwards("Schlick", Schlick::new([0.04, 0.5, 0.9]).unwrap(), &p);
         fresnel_forwards("F82Tint", F82Tint::from_preset(ior::Preset::Chromium).unwrap(), &p);
         fresnel_forwards("NoFresnel", NoFresnel, &p);

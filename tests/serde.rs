@@ -85,6 +85,12 @@ fn every_model() -> Vec<MaterialDesc> {
         FresnelDesc::Conductor {
             eta: Rgb([0.2, 0.9, 1.1]),
             k: Rgb([3.9, 2.4, 2.2]),
+            share_divisions: false,
+        },
+        FresnelDesc::Conductor {
+            eta: Rgb([0.2, 0.9, 1.1]),
+            k: Rgb([3.9, 2.4, 2.2]),
+            share_divisions: true,
         },
         FresnelDesc::Schlick {
             f0: Reflectance::Value(Rgb([0.04; 3])),
@@ -667,7 +673,7 @@ proptest! {
         let desc = match which {
             0 => MaterialDesc::CookTorrance(CookTorranceDesc {
                 ndf: NdfDesc::Ggx, alpha: None, alpha_x: Some(a), alpha_y: Some(b),
-                fresnel: FresnelDesc::Conductor { eta: Rgb([c; 3]), k: Rgb([d; 3]) },
+                fresnel: FresnelDesc::Conductor { eta: Rgb([c; 3]), k: Rgb([d; 3]), share_divisions: false },
                 masking: AnyMasking::SmithHeightCorrelated, sqrt: SqrtDesc::HardwareEstimate,
             }),
             1 => MaterialDesc::CookTorrance(CookTorranceDesc {

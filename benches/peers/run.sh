@@ -131,8 +131,10 @@ STATUS=0
 # brdf::batch::shares_divisions(): Intel CPUs; the same as exact elsewhere); -newton: the same
 # with brdf::fast::NewtonSqrtRecip<3, 3> (square roots and divisions by refined estimates,
 # within a few ULP of the exact policy); -estimate: with brdf::fast::HardwareEstimate (the
-# AVX-512 estimate instructions and one refinement step on Isa::Avx512, exact elsewhere).
-for V in isotropic ggx isotropic-shared ggx-shared isotropic-newton ggx-newton isotropic-estimate; do
+# AVX-512 estimate instructions and one refinement step on Isa::Avx512, exact elsewhere);
+# -estimate-shared: both (explicit lanes that share the division where shares_divisions()).
+for V in isotropic ggx isotropic-shared ggx-shared isotropic-newton ggx-newton isotropic-estimate \
+    isotropic-estimate-shared; do
     NDF=${V%%-*}
     POLICY=exact
     [ "$V" = "$NDF" ] || POLICY=${V#*-}
@@ -152,8 +154,8 @@ if [ "$SAMPLE" = 1 ]; then
     # vndf: visible normals (as Mitsuba); caps: the crate's default spherical caps; -shared:
     # the conductor with SharedDivision (as for eval); -estimate: with HardwareEstimate
     # (explicit 16-lane registers and the estimate instructions on AVX-512).
-    for ST in vndf caps vndf-shared caps-shared vndf-estimate caps-estimate; do
-        STRATEGY=${ST%-*}
+    for ST in vndf caps vndf-shared caps-shared vndf-estimate caps-estimate caps-estimate-shared; do
+        STRATEGY=${ST%%-*}
         POLICY=exact
         [ "$ST" = "$STRATEGY" ] || POLICY=${ST#*-}
         echo "== brdf batch::sample (GgxIsotropic, $ST): $N pairs, $REPS repetitions"
@@ -181,7 +183,8 @@ VARIANTS = (("isotropic", "GgxIsotropic"), ("ggx", "Ggx"),
             ("ggx-shared", "Ggx, SharedDivision"),
             ("isotropic-newton", "GgxIsotropic, NewtonSqrtRecip<3,3>"),
             ("ggx-newton", "Ggx, NewtonSqrtRecip<3,3>"),
-            ("isotropic-estimate", "GgxIsotropic, HardwareEstimate"))
+            ("isotropic-estimate", "GgxIsotropic, HardwareEstimate"),
+            ("isotropic-estimate-shared", "GgxIsotropic, HardwareEstimate, SharedDivision"))
 b, c = {}, {}
 for ndf, _ in VARIANTS:
     b[ndf], c[ndf] = load(f"brdf-eval-{ndf}.json"), load(f"compare-{ndf}.json")
@@ -223,7 +226,8 @@ if sample == "1":
                      ("vndf-shared", "vis. normals, shared div."),
                      ("caps-shared", "caps, shared division"),
                      ("vndf-estimate", "vis. normals, estimates"),
-                     ("caps-estimate", "caps, estimates")):
+                     ("caps-estimate", "caps, estimates"),
+                     ("caps-estimate-shared", "caps, estimates, shared div.")):
         t, e = load(f"brdf-sample-{st}.json"), load(f"compare-sample-{st}.json")
         print(f"  brdf, GgxIsotropic, {name:26} {rate(t['median_s']):8.1f}   "
               f"({t['isa']}; {s['wall_median_s'] / t['median_s']:.2f}x per call, "

@@ -322,6 +322,12 @@ pub enum FresnelDesc {
         /// Extinction, in `[0, 1e4]`.
         #[serde(deserialize_with = "field::k")]
         k: Rgb,
+        /// Whether the channels share one division on the batch kernels of divider-bound
+        /// cores ([`crate::fresnel::Conductor::share_divisions`]: within 8 ULP of the
+        /// per-channel term; requires `k ≥ 0.1` and `η² + k² ≤ 512` in every channel).
+        /// Optional, default `false`.
+        #[serde(default, skip_serializing_if = "core::ops::Not::not")]
+        share_divisions: bool,
     },
     /// Schlick's approximation with `f0`.
     Schlick {
@@ -346,7 +352,16 @@ pub(crate) fn build_fresnel<S: Scalar>(d: &FresnelDesc) -> Result<AnyFresnel<S>,
             }
         }
         FresnelDesc::Dielectric { eta } => Dielectric::new(S::of(eta))?.into(),
-        FresnelDesc::Conductor { eta, k } => Conductor::new(rgb(eta), rgb(k))?.into(),
+        FresnelDesc::Conductor {
+            eta,
+            k,
+            share_divisions: false,
+        } => Conductor::new(rgb(eta), rgb(k))?.into(),
+        FresnelDesc::Conductor {
+            eta,
+            k,
+            share_divisions: true,
+        } => Conductor::new(rgb(eta), rgb(k))?.share_divisions()?.into(),
         FresnelDesc::Schlick { f0 } => Schlick::new(rgb(Rgb(f0.value()?)))?.into(),
         FresnelDesc::One => NoFresnel.into(),
     })

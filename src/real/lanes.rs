@@ -41,6 +41,9 @@ pub trait Backend: Copy + Debug + Send + Sync + 'static {
     type M: Copy + Debug + Send + Sync + 'static;
     /// Lanes per register.
     const LANES: usize;
+    /// [`Bits::SHARE_DIVISIONS`] of [`Lanes`] on this backend: the explicit-lane form of
+    /// [`super::F32FmaSharedDiv`] (`true`) or of [`super::F32Fma`] (`false`).
+    const SHARE_DIVISIONS: bool;
 
     unsafe fn splat(x: f32) -> Self::V;
     /// Lanes `0 .. LANES` of `p`.
@@ -113,6 +116,13 @@ pub type Zmm = Lanes<Avx512>;
 
 /// Eight lanes in an AVX2 register.
 pub type Ymm = Lanes<Avx2>;
+
+/// [`Zmm`] sharing divisions ([`Bits::SHARE_DIVISIONS`]): the explicit-lane form of
+/// [`super::F32FmaSharedDiv`].
+pub type ZmmShared = Lanes<Avx512<true>>;
+
+/// [`Ymm`] sharing divisions, as [`ZmmShared`].
+pub type YmmShared = Lanes<Avx2<true>>;
 
 // SAFETY (every `unsafe` block of this file outside the backends' functions): the
 // instructions need the backend's CPU features, and a value exists only inside functions
@@ -344,6 +354,7 @@ impl<B: Backend> Bits for Lanes<B> {
     fn div_refined(self, d: Self) -> Self {
         Lanes(unsafe { B::div_refined(self.0, d.0) })
     }
+    const SHARE_DIVISIONS: bool = B::SHARE_DIVISIONS;
 }
 
 /// Lanes `i .. i + LANES` of `x` where `mask` is set, zero elsewhere.
@@ -380,14 +391,16 @@ pub(crate) unsafe fn first_lanes<B: Backend>(n: usize) -> LanesMask<B> {
 // AVX-512F: 16 lanes, k-register masks
 // ---------------------------------------------------------------------------------------------
 
-/// The AVX-512F backend (16 lanes, masks in k registers).
+/// The AVX-512F backend (16 lanes, masks in k registers); `SHARED` is its
+/// [`Backend::SHARE_DIVISIONS`].
 #[derive(Clone, Copy, Debug)]
-pub struct Avx512;
+pub struct Avx512<const SHARED: bool = false>;
 
-impl Backend for Avx512 {
+impl<const SHARED: bool> Backend for Avx512<SHARED> {
     type V = __m512;
     type M = __mmask16;
     const LANES: usize = 16;
+    const SHARE_DIVISIONS: bool = SHARED;
 
     #[inline(always)]
     unsafe fn splat(x: f32) -> __m512 {
@@ -580,11 +593,12 @@ impl Backend for Avx512 {
 // AVX2 + FMA: 8 lanes, vector masks
 // ---------------------------------------------------------------------------------------------
 
-/// The AVX2+FMA backend (8 lanes, masks as all-ones/all-zeros lanes).
+/// The AVX2+FMA backend (8 lanes, masks as all-ones/all-zeros lanes); `SHARED` is its
+/// [`Backend::SHARE_DIVISIONS`].
 #[derive(Clone, Copy, Debug)]
-pub struct Avx2;
+pub struct Avx2<const SHARED: bool = false>;
 
-impl Avx2 {
+impl<const SHARED: bool> Avx2<SHARED> {
     /// Every bit set.
     #[inline(always)]
     unsafe fn ones() -> __m256 {
@@ -592,10 +606,11 @@ impl Avx2 {
     }
 }
 
-impl Backend for Avx2 {
+impl<const SHARED: bool> Backend for Avx2<SHARED> {
     type V = __m256;
     type M = __m256;
     const LANES: usize = 8;
+    const SHARE_DIVISIONS: bool = SHARED;
 
     #[inline(always)]
     unsafe fn splat(x: f32) -> __m256 {

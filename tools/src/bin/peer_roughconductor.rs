@@ -70,7 +70,7 @@ impl<B: Splat> Splat for TimesCosThetaI<B> {
 }
 
 const USAGE: &str = "usage: peer_roughconductor --pairs FILE --values OUT --timing OUT.json \\
-    --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--policy exact|shared|newton|estimate]
+    --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--policy exact|shared|newton|estimate|estimate-shared]
     [--mode eval|sample] [--strategy vndf|caps] [--isa detect|portable|avx2|avx512]
     [--reps N] [--warmup N]
 
@@ -81,10 +81,11 @@ square roots and divisions by brdf::fast::NewtonSqrtRecip<3, 3>, --policy estima
 brdf::fast::HardwareEstimate (vrsqrt14ps/vrcp14ps + one step on Isa::Avx512, exact
 elsewhere); --policy shared gives the
 conductor SharedDivision (one division for the three channels where
-brdf::batch::shares_divisions(), e.g. on Intel); default: exact.
+brdf::batch::shares_divisions(), e.g. on Intel); --policy estimate-shared, both (explicit
+lanes sharing the division); default: exact.
 --mode sample times brdf::batch::sample on the viewer directions and uniforms of FILE
 (--strategy vndf: visible normals, as Mitsuba; caps: the crate's default spherical caps;
---policy exact, shared or estimate) and writes wi (3 arrays), pdf and the weight (3 arrays). --isa picks the batch kernel
+--policy exact, shared, estimate or estimate-shared) and writes wi (3 arrays), pdf and the weight (3 arrays). --isa picks the batch kernel
 (default: brdf::batch::Isa::detect()). Run by benches/peers/run.sh.";
 
 /// The command line.
@@ -317,8 +318,14 @@ fn sample_mode(a: &Args, p: &[Vec<f32>], gold: Conductor<f32, 3>) -> (Vec<f64>, 
         ),
         // Explicit 16-lane registers with vrsqrt14ps/vrcp14ps on Isa::Avx512.
         "estimate" => run!(gold.with_policy::<HardwareEstimate>(), HardwareEstimate),
+        "estimate-shared" => run!(
+            gold.with_policy::<HardwareEstimate>()
+                .share_divisions()
+                .unwrap_or_else(|e| fail(e)),
+            HardwareEstimate
+        ),
         other => fail(format!(
-            "--mode sample takes --policy exact, shared or estimate, not {other:?}"
+            "--mode sample takes --policy exact, shared, estimate or estimate-shared, not {other:?}"
         )),
     };
     (times, out.into())
@@ -388,8 +395,14 @@ fn eval_mode(
         ),
         "newton" => run!(gold.with_policy::<Fast>(), Fast),
         "estimate" => run!(gold.with_policy::<HardwareEstimate>(), HardwareEstimate),
+        "estimate-shared" => run!(
+            gold.with_policy::<HardwareEstimate>()
+                .share_divisions()
+                .unwrap_or_else(|e| fail(e)),
+            HardwareEstimate
+        ),
         other => fail(format!(
-            "--policy {other:?}: expected exact, shared, newton or estimate"
+            "--policy {other:?}: expected exact, shared, newton, estimate or estimate-shared"
         )),
     }
 }
