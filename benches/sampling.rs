@@ -99,8 +99,9 @@ fn diffuse(c: &mut Criterion) {
 }
 
 /// GGX Cook-Torrance (`GgxIsotropic`, α = 0.3, Schlick F0 = 0.04, height-correlated Smith)
-/// with each normal-sampling strategy, and Beckmann's visible normals (bracketed Newton) for
-/// comparison: the ratio between strategies is the figure to read.
+/// with each normal-sampling strategy, and Beckmann's visible normals (three bracketed
+/// Newton steps in `erfc(−x)`) for comparison: the ratio between strategies is the figure to
+/// read.
 fn microfacet(c: &mut Criterion) {
     let ggx = CookTorrance::new(
         GgxIsotropic::new(0.3_f32).unwrap(),
