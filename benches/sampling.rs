@@ -1,4 +1,5 @@
-//! Batch sampling throughput (`batch::sample_with`), 64K samples, f32, one core, on every
+//! Batch sampling throughput (`batch::sample_with`; the densities of given pairs,
+//! `batch::pdf_with`, in group `pdf_material`), 64K samples, f32, one core, on every
 //! instruction set this CPU has: samples per second per sampler, so their ratio is measured
 //! on the machine at hand (name the CPU beside any figure: `lscpu`).
 use std::hint::black_box;
@@ -77,6 +78,45 @@ where
                 )
                 .unwrap();
                 black_box(&pdf);
+            })
+        });
+    }
+    g.finish();
+}
+
+/// Benchmarks `batch::pdf_with` of `model` under `name` on every available instruction set:
+/// the densities of given `(wo, wi)` pairs (as a renderer's multiple importance sampling asks
+/// for them), `wi` cosine-distributed.
+pub fn bench_pdf<B, const C: usize>(c: &mut Criterion, group: &str, name: &str, model: &B)
+where
+    B: batch::BatchSample<C>,
+    B::Fused: SampleBrdf<F32Fma, C>,
+    B::SharedDiv: SampleBrdf<F32FmaSharedDiv, C>,
+{
+    let wo = view_directions();
+    let (a, b) = (uniforms(21), uniforms(22));
+    let mut wi: [Vec<f32>; 3] = Default::default();
+    for (u1, u2) in a.iter().zip(&b) {
+        let w = brdf::sampling::cosine_hemisphere(*u1, *u2);
+        wi[0].push(w.x);
+        wi[1].push(w.y);
+        wi[2].push(w.z);
+    }
+    let mut g = c.benchmark_group(group);
+    g.throughput(Throughput::Elements(N as u64));
+    for isa in Isa::ALL.into_iter().filter(|i| i.is_available()) {
+        let mut out = vec![0.0f32; N];
+        g.bench_function(BenchmarkId::new(name, format!("{isa:?}")), |b| {
+            b.iter(|| {
+                batch::pdf_with(
+                    isa,
+                    black_box(model),
+                    Directions::new(&wo[0], &wo[1], &wo[2]),
+                    Directions::new(&wi[0], &wi[1], &wi[2]),
+                    &mut out,
+                )
+                .unwrap();
+                black_box(&out);
             })
         });
     }
@@ -234,6 +274,12 @@ fn material(c: &mut Criterion) {
     bench_sampler(c, group, "plastic_static", &Sum::new(lambert, coat));
     let plastic = Material::Sum(vec![Material::from(lambert), Material::from(coat_parts)]);
     bench_sampler(c, group, "plastic_material", &plastic);
+    // The densities of given pairs (`batch::pdf_with`), static models against materials.
+    let group = "pdf_material";
+    bench_pdf(c, group, "gold_static", &gold);
+    bench_pdf(c, group, "gold_material", &Material::from(runtime_parts));
+    bench_pdf(c, group, "plastic_static", &Sum::new(lambert, coat));
+    bench_pdf(c, group, "plastic_material", &plastic);
 }
 
 criterion_group!(benches, diffuse, microfacet, roughconductor, material);

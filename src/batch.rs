@@ -1096,15 +1096,13 @@ fn sample_kernel_avx512<L: SampleLoop<N>, const N: usize>(
     l.run(wo, u, out)
 }
 
-/// The batch densities and albedo estimates of a run-time mixture's parts (crate-private:
-/// the batch sampler of `Material::Sum` and `Material::Layered`, which need `alloc`).
-#[cfg(feature = "alloc")]
-mod mixture_parts {
+/// Batch densities ([`pdf_with`], [`pdf`]) and the crate-private albedo estimates (the
+/// batch sampler of `Material::Sum` and `Material::Layered`): per-element map loops.
+mod maps {
     use super::*;
 
-    /// A per-element loop of the crate-private batch densities and albedo estimates (the parts
-    /// of a run-time mixture's batch sampler), compiled once per instruction set: `I` input
-    /// streams, one output.
+    /// A per-element loop of the batch densities and albedo estimates, compiled once per
+    /// instruction set: `I` input streams, one output.
     trait MapLoop<const I: usize> {
         fn run(&self, inputs: [&[f32]; I], out: &mut [f32]);
     }
@@ -1130,6 +1128,7 @@ mod mixture_parts {
     }
 
     /// [`SampleBrdf::albedo_estimate`] on the one-lane type `K` per element: input `wo`.
+    #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
     struct PerEstimate<'a, K, B, const N: usize>(&'a B, PhantomData<K>);
 
     impl<K, B, const N: usize> MapLoop<3> for PerEstimate<'_, K, B, N>
@@ -1214,6 +1213,7 @@ mod mixture_parts {
         /// [`SampleBrdf::pdf`]: inputs `wo` then `wi`.
         Pdf,
         /// [`SampleBrdf::albedo_estimate`]: input `wo`.
+        #[cfg_attr(not(feature = "alloc"), allow(dead_code))]
         Estimate,
     }
 
@@ -1249,16 +1249,20 @@ mod mixture_parts {
             // SAFETY: called only from the kernels below (their features checked by the
             // dispatcher), and the mask keeps lanes `i + j < n`, within every slice.
             unsafe {
-                let at = |k: usize| {
-                    Vec3::new(
-                        load(inputs[k], i, m),
-                        load(inputs[k + 1], i, m),
-                        load(inputs[k + 2], i, m),
-                    )
-                };
+                // A function marked for inlining, not a closure: LLVM kept a closure out of
+                // line, without the kernel's features (seen on AVX2: every load a call,
+                // 10× slower).
+                #[inline(always)]
+                unsafe fn at<Bk: crate::real::lanes::Backend>(
+                    s: &[&[f32]],
+                    i: usize,
+                    m: LanesMask<Bk>,
+                ) -> Vec3<crate::real::lanes::Lanes<Bk>> {
+                    unsafe { Vec3::new(load(s[0], i, m), load(s[1], i, m), load(s[2], i, m)) }
+                }
                 let v = match op {
-                    MapOp::Pdf => model.pdf(at(0), at(3)),
-                    MapOp::Estimate => model.albedo_estimate(at(0)),
+                    MapOp::Pdf => model.pdf(at(inputs, i, m), at(&inputs[3..], i, m)),
+                    MapOp::Estimate => model.albedo_estimate(at(inputs, i, m)),
                 };
                 store(out, i, m, v);
             }
@@ -1328,11 +1332,55 @@ mod mixture_parts {
         }
     }
 
-    /// `out[j] = pdf(wo[j], wi[j])` ([`SampleBrdf::pdf`]) with instruction set `isa` (available),
-    /// on the form [`sample_with`] runs (explicit lanes for a model with
-    /// [`BatchBrdf::EXPLICIT_LANES`]), so the densities of its samples bit for bit. Panics if
-    /// `isa` is not available. Crate-private: the densities of a run-time mixture's parts.
-    pub(crate) fn pdf_with<B, const N: usize>(
+    /// Evaluates the density [`SampleBrdf::pdf`] for every pair, `out[j] = pdf(wo[j], wi[j])`
+    /// (sr⁻¹: the density of drawing `wi[j]` from `wo[j]` with the model's sampler, per unit
+    /// solid angle; `0` where that sampler cannot draw it, below the horizon included) with a
+    /// chosen instruction set: the densities a renderer needs for multiple importance
+    /// sampling of directions it drew otherwise (light sampling).
+    ///
+    /// Returns [`Unavailable`] if the CPU lacks `isa`. The results are [`SampleBrdf::pdf`]
+    /// on the form [`sample_with`] runs, bit for bit: on the `f32` model for
+    /// [`Isa::Portable`], on [`BatchBrdf::fused`] (or [`BatchBrdf::shared_div`] where
+    /// [`shares_divisions`]) for the FMA variants, on explicit lanes for a model with
+    /// [`BatchBrdf::EXPLICIT_LANES`] (hardware estimates aside, as for [`eval_with`]). A model
+    /// with batch densities of its own ([`SampleBrdf::pdf_batch`], tried first: a run-time
+    /// [`Material`](crate::material::Material)) gives those of the model it runs; a `Sum` or
+    /// `Layered` material combines its parts' batches with the per-pair mixture's formula
+    /// (the same bits as its `pdf` per pair).
+    ///
+    /// Note the argument order: `wo` (the given direction) first, as in
+    /// [`SampleBrdf::pdf`], unlike [`eval_with`]'s `(wi, wo)`.
+    ///
+    /// # Panics
+    ///
+    /// If `wo`, `wi` and `out` differ in length.
+    pub fn pdf_with<B, const N: usize>(
+        isa: Isa,
+        brdf: &B,
+        wo: Directions<'_>,
+        wi: Directions<'_>,
+        out: &mut [f32],
+    ) -> Result<(), Unavailable>
+    where
+        B: BatchSample<N>,
+        B::Fused: SampleBrdf<F32Fma, N>,
+        B::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
+    {
+        assert!(
+            wo.checked_len() == out.len() && wi.checked_len() == out.len(),
+            "batch: output and input differ in length"
+        );
+        if !isa.is_available() {
+            return Err(Unavailable(isa));
+        }
+        if !brdf.pdf_batch(isa, wo, wi, out) {
+            pdf_kernels(isa, brdf, wo, wi, out);
+        }
+        Ok(())
+    }
+
+    /// The loops of [`pdf_with`] (`isa` available, the lengths equal: the caller checked).
+    fn pdf_kernels<B, const N: usize>(
         isa: Isa,
         brdf: &B,
         wo: Directions<'_>,
@@ -1343,11 +1391,6 @@ mod mixture_parts {
         B::Fused: SampleBrdf<F32Fma, N>,
         B::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
     {
-        assert!(
-            isa.is_available(),
-            "batch: {isa:?} is not available on this CPU"
-        );
-        assert!(wo.checked_len() == out.len() && wi.checked_len() == out.len());
         map_with!(
             isa,
             brdf,
@@ -1358,7 +1401,38 @@ mod mixture_parts {
         )
     }
 
-    /// `out[j] = albedo_estimate(wo[j])` ([`SampleBrdf::albedo_estimate`]) as [`pdf_with`].
+    /// [`pdf_with`] on the widest instruction set this CPU has ([`Isa::detect`]).
+    ///
+    /// ```
+    /// use brdf::batch::{Directions, pdf};
+    /// use brdf::models::Lambert;
+    ///
+    /// let white = Lambert::new([1.0_f32]).unwrap();
+    /// let (zero, one) = ([0.0f32; 64], [1.0f32; 64]);
+    /// let mut p = [0.0f32; 64];
+    /// // wo = wi = the normal: the cosine density 1/π.
+    /// let n = Directions::new(&zero, &zero, &one);
+    /// pdf(&white, n, n, &mut p);
+    /// assert!(p.iter().all(|&v| (v - core::f32::consts::FRAC_1_PI).abs() < 1e-7));
+    /// ```
+    ///
+    /// # Panics
+    ///
+    /// If `wo`, `wi` and `out` differ in length.
+    #[inline]
+    pub fn pdf<B, const N: usize>(brdf: &B, wo: Directions<'_>, wi: Directions<'_>, out: &mut [f32])
+    where
+        B: BatchSample<N>,
+        B::Fused: SampleBrdf<F32Fma, N>,
+        B::SharedDiv: SampleBrdf<F32FmaSharedDiv, N>,
+    {
+        // The detected variant is available by construction.
+        let _ = pdf_with(Isa::detect(), brdf, wo, wi, out);
+    }
+
+    /// `out[j] = albedo_estimate(wo[j])` ([`SampleBrdf::albedo_estimate`]) on the form
+    /// [`pdf_with`] runs, with `isa` (panics if it is not available; the lengths equal).
+    #[cfg(feature = "alloc")]
     pub(crate) fn albedo_estimate_with<B, const N: usize>(
         isa: Isa,
         brdf: &B,
@@ -1386,7 +1460,8 @@ mod mixture_parts {
 }
 
 #[cfg(feature = "alloc")]
-pub(crate) use mixture_parts::{albedo_estimate_with, pdf_with};
+pub(crate) use maps::albedo_estimate_with;
+pub use maps::{pdf, pdf_with};
 
 /// `LANES` samples per iteration of `model` on explicit registers ([`Zmm`], [`Ymm`]), the last
 /// `n mod LANES` under a lane mask: the sampling loop of models with

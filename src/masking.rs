@@ -314,11 +314,13 @@ pub struct SmithSeparableWalter;
 impl<R: Real> Masking<R, Beckmann<R>> for SmithSeparableWalter {
     #[inline(always)]
     fn g2(&self, ndf: &Beckmann<R>, wi: Vec3<R>, wo: Vec3<R>, wm: Vec3<R>) -> R {
-        let g1 = |w: Vec3<R>| {
+        // A function, not a closure (see `erf_inv_giles` in `sampling::microfacet`).
+        #[inline(always)]
+        fn g1<R: Real>(ndf: &Beckmann<R>, w: Vec3<R>) -> R {
             let sigma = ndf.projected_alpha(w) * (w.x * w.x + w.y * w.y).sqrt();
             walter_beckmann_g1(cos_clamped(w) / sigma.max(tiny()))
-        };
-        R::select(front(wi, wo, wm), g1(wi) * g1(wo), R::zero())
+        }
+        R::select(front(wi, wo, wm), g1(ndf, wi) * g1(ndf, wo), R::zero())
     }
 
     #[inline(always)]

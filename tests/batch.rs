@@ -630,6 +630,156 @@ fn batch_sampling_of_run_time_parts_and_materials() {
     }
 }
 
+/// `batch::pdf_with` on every available variant equals `SampleBrdf::pdf` per pair bit for bit,
+/// on the form `batch::sample_with` runs (as `check_sample`), at `n` pairs whose `wi` is
+/// below the horizon at every 23rd pair (density 0). Returns how many variants ran; also
+/// checks that an unavailable one reports so and that some densities are positive.
+fn check_pdf<B, const N: usize>(name: &str, brdf: &B, n: usize) -> usize
+where
+    B: batch::BatchSample<N>,
+    B::Fused: brdf::SampleBrdf<F32Fma, N>,
+    B::SharedDiv: brdf::SampleBrdf<F32FmaSharedDiv, N>,
+{
+    use brdf::SampleBrdf;
+    let mut d = pairs(n);
+    for i in (0..n).step_by(23) {
+        d[2][i] = -d[2][i] - 0.01;
+    }
+    let wi = Directions::new(&d[0], &d[1], &d[2]);
+    let wo = Directions::new(&d[3], &d[4], &d[5]);
+    let (fused, shared) = (brdf.fused(), brdf.shared_div());
+    let mut ran = 0;
+    for isa in Isa::ALL {
+        let mut out = vec![f32::NAN; n];
+        match batch::pdf_with(isa, brdf, wo, wi, &mut out) {
+            Err(e) => {
+                assert!(!isa.is_available(), "{e}");
+                continue;
+            }
+            Ok(()) => ran += 1,
+        }
+        let mut positive = 0;
+        for i in 0..n {
+            let (wi_i, wo_i) = (
+                Vec3::new(d[0][i], d[1][i], d[2][i]),
+                Vec3::new(d[3][i], d[4][i], d[5][i]),
+            );
+            let want = if isa == Isa::Portable {
+                brdf.pdf(wo_i, wi_i)
+            } else if batch::shares_divisions() {
+                let v = |w: Vec3<f32>| {
+                    Vec3::new(
+                        F32FmaSharedDiv(w.x),
+                        F32FmaSharedDiv(w.y),
+                        F32FmaSharedDiv(w.z),
+                    )
+                };
+                shared.pdf(v(wo_i), v(wi_i)).0
+            } else {
+                let v = |w: Vec3<f32>| Vec3::new(F32Fma(w.x), F32Fma(w.y), F32Fma(w.z));
+                fused.pdf(v(wo_i), v(wi_i)).0
+            };
+            assert_eq!(
+                out[i].to_bits(),
+                want.to_bits(),
+                "{name} {isa:?} pair {i}: {} vs {want}",
+                out[i]
+            );
+            if i % 23 == 0 {
+                assert_eq!(out[i], 0.0, "{name} {isa:?} pair {i}: wi below the horizon");
+            }
+            positive += usize::from(out[i] > 0.0);
+        }
+        assert!(
+            n < 4 || positive > n / 2,
+            "{name} {isa:?}: {positive} of {n} positive"
+        );
+    }
+    ran
+}
+
+/// Batch densities (`batch::pdf_with`, `batch::pdf`) of static models, run-time parts,
+/// materials of one model and mixture materials (`Sum`, `Layered`, nested), at lengths around
+/// the registers, the masked tail and several blocks: `SampleBrdf::pdf` per pair bit for bit.
+#[test]
+fn batch_densities_equal_scalar_densities_on_every_isa() {
+    use brdf::fresnel::{AnyFresnel, Dielectric};
+    use brdf::masking::AnyMasking;
+    use brdf::material::Material;
+    use brdf::ndf::AnyNdf;
+    let lambert = Lambert::new([0.2_f32, 0.3, 0.4]).unwrap();
+    let on = brdf::models::OrenNayar::new([0.6_f32], 0.5).unwrap();
+    let gold = shared_division_gold();
+    let parts = shared_division_gold_parts();
+    let coat = CookTorrance::new(
+        Ggx::<f32>::anisotropic(0.05, 0.4).unwrap(),
+        Dielectric::new(1.5_f32).unwrap().channels::<3>(),
+        SmithHeightCorrelated,
+    );
+    let coat_parts = CookTorrance::new(
+        AnyNdf::from(coat.ndf),
+        AnyFresnel::from(coat.fresnel),
+        AnyMasking::from(coat.masking),
+    );
+    let plastic = Material::Sum(vec![Material::from(lambert), Material::from(coat_parts)]);
+    let layered = Material::Layered(Box::new(brdf::models::Layered::new(
+        Material::from(lambert),
+        Material::from(coat_parts),
+        AnyFresnel::from(Dielectric::new(1.5_f32).unwrap().channels::<3>()),
+    )));
+    let nested = Material::Sum(vec![
+        plastic.clone(),
+        Material::Sum(vec![]),
+        Material::Sum(vec![Material::from(parts)]),
+        layered.clone(),
+    ]);
+    for n in [0, 1, 15, 17, 1031, 2 * batch::BLOCK + 5] {
+        assert!(check_pdf("lambert", &lambert, n) >= 1);
+        assert!(check_pdf("oren-nayar", &on, n) >= 1);
+        assert!(check_pdf("gold, shared division", &gold, n) >= 1);
+        assert!(check_pdf("gold parts", &parts, n) >= 1);
+        assert!(check_pdf("gold material", &Material::from(parts), n) >= 1);
+        assert!(check_pdf("plastic material", &plastic, n) >= 1);
+        assert!(check_pdf("layered material", &layered, n) >= 1);
+        assert!(check_pdf("nested material", &nested, n) >= 1);
+        assert!(check_pdf("plastic", &Sum::new(lambert, coat), n) >= 1);
+    }
+    // `pdf` runs the detected variant.
+    let d = pairs(64);
+    let (wi, wo) = (
+        Directions::new(&d[0], &d[1], &d[2]),
+        Directions::new(&d[3], &d[4], &d[5]),
+    );
+    let (mut a, mut b) = (vec![0.0f32; 64], vec![0.0f32; 64]);
+    batch::pdf(&plastic, wo, wi, &mut a);
+    batch::pdf_with(Isa::detect(), &plastic, wo, wi, &mut b).unwrap();
+    assert_eq!(a, b);
+    // The material's hook declines an unavailable instruction set (a safe method).
+    for isa in Isa::ALL {
+        use brdf::SampleBrdf;
+        let got = plastic.pdf_batch(isa, wo, wi, &mut a);
+        assert_eq!(got, isa.is_available(), "{isa:?}");
+    }
+}
+
+#[test]
+#[should_panic(expected = "differ in length")]
+fn batch_densities_reject_unequal_lengths() {
+    let lambert = Lambert::new([0.5_f32]).unwrap();
+    let (x, short) = ([0.0f32; 8], [0.0f32; 7]);
+    let mut out = [0.0f32; 8];
+    batch::pdf(
+        &lambert,
+        Directions::new(&x, &x, &x),
+        Directions {
+            x: &x,
+            y: &short,
+            z: &x,
+        },
+        &mut out,
+    );
+}
+
 /// Batch sampling with [`HardwareEstimate`] against the exact policy: bit for bit except on
 /// [`Isa::Avx512`], where the model samples on explicit 16-lane registers with the estimates
 /// (the half vector and the final division of `f`); there every direction is within 1e-6 of

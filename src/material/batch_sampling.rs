@@ -239,8 +239,14 @@ fn mix_samples(
     }
 }
 
-/// The density of any material at `(wo[j], wi[j])`.
-fn pdf(m: &Material<f32>, isa: Isa, wo: Directions<'_>, wi: Directions<'_>, out: &mut [f32]) {
+/// The density of any material at `(wo[j], wi[j])` (`isa` available, the lengths equal).
+pub(super) fn pdf(
+    m: &Material<f32>,
+    isa: Isa,
+    wo: Directions<'_>,
+    wi: Directions<'_>,
+    out: &mut [f32],
+) {
     match m {
         Material::Sum(terms) => sum_pdf(terms, isa, wo, wi, out),
         Material::Layered(l) => {

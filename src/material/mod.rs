@@ -199,9 +199,9 @@ macro_rules! models {
                 }
             }
 
-            /// The densities of a leaf variant's model at `(wo[j], wi[j])` through its batch
-            /// kernels (`false` for a mixture: `batch_sampling` combines its parts').
-            #[cfg(feature = "alloc")]
+            /// [`SampleBrdf::pdf_batch`]: a leaf variant's model through
+            /// [`crate::batch::pdf_with`], a `Sum` or `Layered` material by its parts'
+            /// batches (`batch_sampling`; `isa` is available: the caller checked).
             fn pdf_batch_f32(
                 &self,
                 isa: crate::batch::Isa,
@@ -210,16 +210,17 @@ macro_rules! models {
                 out: &mut [f32],
             ) -> bool {
                 match self {
-                    $($( Material::$v(m) => {
-                        crate::batch::pdf_with(isa, m, wo, wi, out);
+                    $($( Material::$v(m) => crate::batch::pdf_with(isa, m, wo, wi, out).is_ok(), )?)*
+                    #[cfg(feature = "alloc")]
+                    Material::Sum(_) | Material::Layered(_) => {
+                        batch_sampling::pdf(self, isa, wo, wi, out);
                         true
-                    } )?)*
-                    Material::Sum(_) | Material::Layered(_) => false,
+                    }
                 }
             }
 
-            /// The albedo estimates of a leaf variant's model at each `wo[j]`, as
-            /// [`Material::pdf_batch_f32`].
+            /// The albedo estimates of a leaf variant's model at each `wo[j]` through its batch
+            /// kernels (`false` for a mixture: `batch_sampling` combines its parts').
             #[cfg(feature = "alloc")]
             fn estimate_batch_f32(
                 &self,
@@ -389,6 +390,25 @@ macro_rules! models {
                     return false;
                 };
                 isa.is_available() && m.sample_batch_f32(isa, wo, u, out)
+            }
+
+            /// A model's densities through its batch kernels, a `Sum` or `Layered` material's
+            /// by its parts' batches combined with the per-pair mixture's formula (the same
+            /// bits as `pdf` per pair on the form the batch loops run, `tests/batch.rs`).
+            /// Returns `false` if `isa` is not available.
+            #[inline]
+            fn pdf_batch(
+                &self,
+                isa: crate::batch::Isa,
+                wo: crate::batch::Directions<'_>,
+                wi: crate::batch::Directions<'_>,
+                out: &mut [f32],
+            ) -> bool {
+                // A safe method: `isa` is checked here too (the mixtures' kernels trust it).
+                let Some(m) = (self as &dyn core::any::Any).downcast_ref::<Material<f32>>() else {
+                    return false;
+                };
+                isa.is_available() && m.pdf_batch_f32(isa, wo, wi, out)
             }
         }
 

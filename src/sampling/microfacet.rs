@@ -407,11 +407,16 @@ struct ErfInvArg<R> {
 #[inline(always)]
 fn erf_inv_giles<R: Real>(a: ErfInvArg<R>) -> R {
     let w = -(a.one_minus * a.one_plus).max(tiny()).ln();
-    let horner = |c: &[f64], t: R| {
-        c.iter()
-            .skip(1)
-            .fold(R::from_f64(c[0]), |p, &k| p.mul_add(t, R::from_f64(k)))
-    };
+    // A function, not a closure: a closure may stay out of line, outside the features of
+    // the batch kernel that inlines this body (every lane operation a call).
+    #[inline(always)]
+    fn horner<R: Real>(c: &[f64], t: R) -> R {
+        let mut p = R::from_f64(c[0]);
+        for &k in &c[1..] {
+            p = p.mul_add(t, R::from_f64(k));
+        }
+        p
+    }
     const P1: [f64; 9] = [
         2.810_226_36e-08,
         3.432_739_39e-07,

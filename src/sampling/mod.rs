@@ -146,6 +146,27 @@ pub trait SampleBrdf<R: Real, const N: usize>: Brdf<R, N> {
         let _ = (isa, wo, u, out);
         false
     }
+
+    /// The model's own batch densities, which [`crate::batch::pdf_with`] (and
+    /// [`pdf`](crate::batch::pdf)) try first: it writes `pdf(wo[j], wi[j])` to `out[j]` with
+    /// instruction set `isa`, as `pdf_with` does, and returns `true`, or returns `false`
+    /// without writing. Called on the `f32` model after the entry point checked `isa` and the
+    /// lengths; a safe method, as [`SampleBrdf::sample_batch`] (whose rules it follows: a
+    /// wrapper that changes the density must not forward it).
+    ///
+    /// The default returns `false`. [`crate::material::Material`] overrides it: a model
+    /// through its batch kernels, a `Sum` or `Layered` material by its parts' batches.
+    #[inline]
+    fn pdf_batch(
+        &self,
+        isa: crate::batch::Isa,
+        wo: crate::batch::Directions<'_>,
+        wi: crate::batch::Directions<'_>,
+        out: &mut [f32],
+    ) -> bool {
+        let _ = (isa, wo, wi, out);
+        false
+    }
 }
 
 /// Warps `(u1, u2) ∈ [0, 1]²` to the upper hemisphere with density `cos θ / π`.
