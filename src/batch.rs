@@ -26,7 +26,8 @@
 //!   them), and 4·10⁻⁷ relative on the batch tests' workloads.
 //!
 //! **Explicit lanes.** Two kinds of model run differently on the FMA instruction sets in
-//! [`eval_with`], [`eval`], [`eval_glam`], [`sample_with`] and [`sample`]
+//! [`eval_with`], [`eval`], [`eval_glam`], [`sample_with`], [`sample`], [`pdf_with`] and
+//! [`pdf`]
 //! ([`Splat::EXPLICIT_LANES`]): on explicit
 //! registers of lanes (16 on [`Isa::Avx512`], 8 on [`Isa::Avx2Fma`]), a register of pairs per
 //! iteration and the remainder under a lane mask, every operation the one of [`F32Fma`], or
@@ -53,7 +54,8 @@
 //! composition holding a `Material` (`Sum<Material<f32>, _>`) does not get this, and if
 //! another part asks for explicit lanes the `Material` runs out of line there (the same
 //! bits, slowly): compose run-time materials with `Material::Sum` and `Material::Layered`.
-//! Sampling has the same hook ([`SampleBrdf::sample_batch`]): a material of one model samples
+//! Sampling and densities have the same hooks ([`SampleBrdf::sample_batch`],
+//! [`SampleBrdf::pdf_batch`]): a material of one model samples
 //! a batch as that model; a `Sum` or `Layered` material runs its mixture over blocks: each
 //! part's samples, densities and albedo estimates through that part's batch kernels, the
 //! material's value through its batch evaluation, and the choice and weights in plain
@@ -397,16 +399,25 @@ mod wide_form {
 /// lanes of a model with [`BatchBrdf::EXPLICIT_LANES`] (run-time parts and materials, with
 /// [`crate::fresnel::AnyFresnel::ConductorShared`]) choose the same way; the pipelined
 /// passes run the [`F32Fma`] form everywhere.
+///
+/// The environment variable `BRDF_SHARE_DIVISIONS` overrides the vendor check when it is
+/// `0` (never share) or `1` (share), read once: to measure both arrangements on one machine,
+/// and so the test suite runs the other CPU family's kernels (`.ci/run` runs
+/// `tests/batch.rs` both ways). Any other value is ignored.
 #[must_use]
 pub fn shares_divisions() -> bool {
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     {
         use std::sync::OnceLock;
-        static INTEL: OnceLock<bool> = OnceLock::new();
-        *INTEL.get_or_init(|| {
-            let id = core::arch::x86_64::__cpuid(0);
-            let vendor = [id.ebx, id.edx, id.ecx].map(u32::to_le_bytes).concat();
-            vendor == *b"GenuineIntel"
+        static SHARE: OnceLock<bool> = OnceLock::new();
+        *SHARE.get_or_init(|| match std::env::var("BRDF_SHARE_DIVISIONS").as_deref() {
+            Ok("0") => false,
+            Ok("1") => true,
+            _ => {
+                let id = core::arch::x86_64::__cpuid(0);
+                let vendor = [id.ebx, id.edx, id.ecx].map(u32::to_le_bytes).concat();
+                vendor == *b"GenuineIntel"
+            }
         })
     }
     #[cfg(not(all(feature = "std", target_arch = "x86_64")))]

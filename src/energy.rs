@@ -1181,7 +1181,7 @@ pub fn dielectric_average_albedo_table<R: Real>(alpha: R, eta: R) -> R {
     let (iz, w) = dielectric_table::cell(dielectric_average_table_u(alpha, eta), nz);
     let weights = dielectric_table::catmull_rom(w);
     let k = side + iy * row + iz;
-    // Unrolled by hand, not a closure (see `erf_inv_giles` in `sampling::microfacet`).
+    // Two loops, not a closure (see `erf_inv_giles` in `sampling::microfacet`).
     let (mut e0, mut e1) = (R::zero(), R::zero());
     for (b, &wb) in weights.iter().enumerate() {
         e0 += wb * gather(avg, k + R::from_f64(b as f64));

@@ -623,8 +623,9 @@ pub trait DivisionPlan:
 pub struct PerChannel;
 
 /// [`DivisionPlan`]: on [`crate::real::F32FmaSharedDiv`] — the batch kernels' number type on
-/// cores whose divider bounds them ([`crate::batch::shares_divisions`]) — all channels share
-/// one division; on every other type, one division per channel. Chosen with
+/// cores whose divider bounds them ([`crate::batch::shares_divisions`]), and its
+/// explicit-lane counterparts in those kernels — all channels share one division; on every
+/// other type, one division per channel. Chosen with
 /// [`Conductor::share_divisions`], which requires `k ≥ `[`SHARED_DIVISION_MIN_K`] in every
 /// channel (the metals: gold, silver, copper, aluminium, iron … have `k > 1` in the visible).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -1304,8 +1305,9 @@ impl<R: Real, const N: usize, P: SqrtFn, D: DivisionPlan> Conductor<R, N, P, D> 
         }
     }
 
-    /// The same conductor with [`SharedDivision`]: on the batch kernels' number type of
-    /// divider-bound cores ([`crate::real::F32FmaSharedDiv`]) its channels share one division
+    /// The same conductor with [`SharedDivision`]: on the batch kernels' number types of
+    /// divider-bound cores ([`crate::real::F32FmaSharedDiv`] and its explicit lanes) its
+    /// channels share one division
     /// (within 8 ULP of the per-channel form; measured 1.12× faster on an Intel Xeon, see
     /// [`crate::batch::shares_divisions`]); elsewhere it is the per-channel conductor bit for
     /// bit.
@@ -1616,7 +1618,8 @@ impl<R> From<Dielectric<R>> for AnyFresnel<R> {
 impl<S: Scalar> Splat for AnyFresnel<S> {
     /// `true`: a `match` on the variant per pair keeps LLVM from vectorizing the batch
     /// path's one-lane loop; on explicit lanes it is one branch per register of 8 or 16
-    /// pairs (the same operations, so the bits of [`crate::real::F32Fma`]).
+    /// pairs (the same operations, so the bits of [`crate::real::F32Fma`], or of
+    /// [`crate::real::F32FmaSharedDiv`] where the batch path shares divisions).
     const EXPLICIT_LANES: bool = true;
     type On<L: Real> = AnyFresnel<L>;
     #[inline]

@@ -306,7 +306,8 @@ pub trait Bits: Sized + sealed::Sealed {
     /// Whether formulas that divide once per channel should share one division (computing
     /// the reciprocal of the product of the denominators, and each quotient from it with a
     /// few multiplications). `true` only for [`F32FmaSharedDiv`], the batch kernels' number
-    /// type on cores whose divider is their bottleneck; a formula reads it at compile time.
+    /// type on cores whose divider is their bottleneck, and for its explicit-lane
+    /// counterparts (crate-private); a formula reads it at compile time.
     const SHARE_DIVISIONS: bool = false;
 }
 

@@ -204,12 +204,7 @@ fn shared_division_gold() -> CookTorrance<
 
 /// The shared-division gold with run-time parts: the explicit lanes on the FMA instruction
 /// sets.
-fn shared_division_gold_parts() -> CookTorrance<
-    f32,
-    brdf::ndf::AnyNdf<f32>,
-    brdf::fresnel::AnyFresnel<f32>,
-    brdf::masking::AnyMasking,
-> {
+fn shared_division_gold_parts() -> Parts {
     let ct = shared_division_gold();
     CookTorrance::new(
         brdf::ndf::AnyNdf::from(ct.ndf),
@@ -360,12 +355,25 @@ fn hardware_estimates_within_a_few_ulp_of_exact() {
         SmithHeightCorrelated,
     );
     let sharp_estimate = sharp.with_sqrt::<HardwareEstimate>();
-    let (mut worst, mut differ) = ([0.0f64; 3], 0);
+    // The conductor sharing its division (on the shared lanes where the batch path shares).
+    let shared = CookTorrance::new(
+        gold.ndf,
+        gold.fresnel.share_divisions().unwrap(),
+        SmithSeparable,
+    );
+    let shared_estimate = CookTorrance::new(
+        gold.ndf,
+        gold_estimate.fresnel.share_divisions().unwrap(),
+        SmithSeparable,
+    )
+    .with_sqrt::<HardwareEstimate>();
+    let (mut worst, mut differ) = ([0.0f64; 4], 0);
     for n in [0, 1, 15, 16, 17, 1031, 4099] {
         for (k, (w, d)) in [
             check_estimate(&ggx, &ggx_estimate, n, 1e-6),
             check_estimate(&gold, &gold_estimate, n, 1e-6),
             check_estimate(&sharp, &sharp_estimate, n, 1e-6),
+            check_estimate(&shared, &shared_estimate, n, 1e-6),
         ]
         .into_iter()
         .enumerate()
@@ -374,8 +382,10 @@ fn hardware_estimates_within_a_few_ulp_of_exact() {
             differ += d;
         }
     }
-    let [g, c, s] = worst;
-    eprintln!("worst relative: GGX {g:.2e}, gold {c:.2e}, GGX α = 1e-3 {s:.2e}");
+    let [g, c, s, d] = worst;
+    eprintln!(
+        "worst relative: GGX {g:.2e}, gold {c:.2e}, GGX α = 1e-3 {s:.2e}, gold shared {d:.2e}"
+    );
     // Each estimate is within 1 ULP, so most values round alike; the conductor's twelve
     // estimated operations per evaluation make some differ (the estimates did run).
     if Isa::Avx512.is_available() {
@@ -574,6 +584,62 @@ fn batch_sampling_equals_scalar_sampling_on_every_isa() {
     assert!(check_sample("gold material, shared division", &material, 1001) >= 1);
 }
 
+/// A Cook-Torrance with run-time parts (the explicit lanes on the FMA instruction sets).
+type Parts = CookTorrance<
+    f32,
+    brdf::ndf::AnyNdf<f32>,
+    brdf::fresnel::AnyFresnel<f32>,
+    brdf::masking::AnyMasking,
+>;
+
+/// The mixtures of the batch sampling and density tests: a plastic (Lambert and a GGX
+/// dielectric lobe) as the static `Sum` parts and as a `Sum` material, a `Layered` material,
+/// and a nested sum of the two with an empty sum and a sum of one (`gold`).
+struct Mixtures {
+    lambert: Lambert<f32, 3>,
+    coat: CookTorrance<f32, Ggx<f32>, brdf::fresnel::Dielectric<f32, 3>, SmithHeightCorrelated>,
+    plastic: brdf::material::Material<f32>,
+    layered: brdf::material::Material<f32>,
+    nested: brdf::material::Material<f32>,
+}
+
+fn mixtures(gold: Parts) -> Mixtures {
+    use brdf::fresnel::{AnyFresnel, Dielectric};
+    use brdf::masking::AnyMasking;
+    use brdf::material::Material;
+    use brdf::ndf::AnyNdf;
+    let lambert = Lambert::new([0.2_f32, 0.3, 0.4]).unwrap();
+    let coat = CookTorrance::new(
+        Ggx::<f32>::anisotropic(0.05, 0.4).unwrap(),
+        Dielectric::new(1.5_f32).unwrap().channels::<3>(),
+        SmithHeightCorrelated,
+    );
+    let coat_parts = CookTorrance::new(
+        AnyNdf::from(coat.ndf),
+        AnyFresnel::from(coat.fresnel),
+        AnyMasking::from(coat.masking),
+    );
+    let plastic = Material::Sum(vec![Material::from(lambert), Material::from(coat_parts)]);
+    let layered = Material::Layered(Box::new(brdf::models::Layered::new(
+        Material::from(lambert),
+        Material::from(coat_parts),
+        AnyFresnel::from(Dielectric::new(1.5_f32).unwrap().channels::<3>()),
+    )));
+    let nested = Material::Sum(vec![
+        plastic.clone(),
+        Material::Sum(vec![]),
+        Material::Sum(vec![Material::from(gold)]),
+        layered.clone(),
+    ]);
+    Mixtures {
+        lambert,
+        coat,
+        plastic,
+        layered,
+        nested,
+    }
+}
+
 /// Sampling with run-time parts (explicit lanes on the FMA instruction sets), a `Material` of
 /// one model (sampled as that model through its batch hook), `Sum` and `Layered` materials,
 /// nested ones too (their mixtures over blocks of the parts' batches), and the static
@@ -582,7 +648,7 @@ fn batch_sampling_equals_scalar_sampling_on_every_isa() {
 /// masked tail and several blocks.
 #[test]
 fn batch_sampling_of_run_time_parts_and_materials() {
-    use brdf::fresnel::{AnyFresnel, Dielectric};
+    use brdf::fresnel::AnyFresnel;
     use brdf::masking::AnyMasking;
     use brdf::material::Material;
     use brdf::ndf::AnyNdf;
@@ -596,30 +662,13 @@ fn batch_sampling_of_run_time_parts_and_materials() {
         AnyFresnel::from(gold.fresnel),
         AnyMasking::from(gold.masking),
     );
-    let lambert = Lambert::new([0.2_f32, 0.3, 0.4]).unwrap();
-    let coat = CookTorrance::new(
-        Ggx::<f32>::anisotropic(0.05, 0.4).unwrap(),
-        Dielectric::new(1.5_f32).unwrap().channels::<3>(),
-        SmithHeightCorrelated,
-    );
-    let coat_parts = CookTorrance::new(
-        AnyNdf::from(coat.ndf),
-        AnyFresnel::from(coat.fresnel),
-        AnyMasking::from(coat.masking),
-    );
-    let plastic = Material::Sum(vec![Material::from(lambert), Material::from(coat_parts)]);
-    // A layered material and a nested sum of three terms (an empty sum and a sum of one).
-    let layered = Material::Layered(Box::new(brdf::models::Layered::new(
-        Material::from(lambert),
-        Material::from(coat_parts),
-        AnyFresnel::from(Dielectric::new(1.5_f32).unwrap().channels::<3>()),
-    )));
-    let nested = Material::Sum(vec![
-        plastic.clone(),
-        Material::Sum(vec![]),
-        Material::Sum(vec![Material::from(parts)]),
-        layered.clone(),
-    ]);
+    let Mixtures {
+        lambert,
+        coat,
+        plastic,
+        layered,
+        nested,
+    } = mixtures(parts);
     for n in [0, 1, 15, 17, 1031, 2 * batch::BLOCK + 5] {
         assert!(check_sample("run-time parts", &parts, n) >= 1);
         assert!(check_sample("gold material", &Material::from(parts), n) >= 1);
@@ -703,36 +752,17 @@ where
 /// the registers, the masked tail and several blocks: `SampleBrdf::pdf` per pair bit for bit.
 #[test]
 fn batch_densities_equal_scalar_densities_on_every_isa() {
-    use brdf::fresnel::{AnyFresnel, Dielectric};
-    use brdf::masking::AnyMasking;
     use brdf::material::Material;
-    use brdf::ndf::AnyNdf;
-    let lambert = Lambert::new([0.2_f32, 0.3, 0.4]).unwrap();
     let on = brdf::models::OrenNayar::new([0.6_f32], 0.5).unwrap();
     let gold = shared_division_gold();
     let parts = shared_division_gold_parts();
-    let coat = CookTorrance::new(
-        Ggx::<f32>::anisotropic(0.05, 0.4).unwrap(),
-        Dielectric::new(1.5_f32).unwrap().channels::<3>(),
-        SmithHeightCorrelated,
-    );
-    let coat_parts = CookTorrance::new(
-        AnyNdf::from(coat.ndf),
-        AnyFresnel::from(coat.fresnel),
-        AnyMasking::from(coat.masking),
-    );
-    let plastic = Material::Sum(vec![Material::from(lambert), Material::from(coat_parts)]);
-    let layered = Material::Layered(Box::new(brdf::models::Layered::new(
-        Material::from(lambert),
-        Material::from(coat_parts),
-        AnyFresnel::from(Dielectric::new(1.5_f32).unwrap().channels::<3>()),
-    )));
-    let nested = Material::Sum(vec![
-        plastic.clone(),
-        Material::Sum(vec![]),
-        Material::Sum(vec![Material::from(parts)]),
-        layered.clone(),
-    ]);
+    let Mixtures {
+        lambert,
+        coat,
+        plastic,
+        layered,
+        nested,
+    } = mixtures(parts);
     for n in [0, 1, 15, 17, 1031, 2 * batch::BLOCK + 5] {
         assert!(check_pdf("lambert", &lambert, n) >= 1);
         assert!(check_pdf("oren-nayar", &on, n) >= 1);
@@ -956,6 +986,24 @@ fn material_sample_batch_declines_unavailable_instruction_sets() {
                 v[3].iter().all(|&p| p > 0.0),
                 "{isa:?}: the samples are valid"
             );
+        }
+    }
+}
+
+/// `BRDF_SHARE_DIVISIONS=0` or `1` decides `batch::shares_divisions()` (`.ci/run` runs this
+/// file both ways); without it, the CPU vendor does (Intel: share).
+#[test]
+fn share_divisions_override() {
+    match std::env::var("BRDF_SHARE_DIVISIONS").as_deref() {
+        Ok("0") => assert!(!batch::shares_divisions()),
+        Ok("1") => assert!(batch::shares_divisions()),
+        _ => {
+            #[cfg(target_arch = "x86_64")]
+            {
+                let id = core::arch::x86_64::__cpuid(0);
+                let vendor = [id.ebx, id.edx, id.ecx].map(u32::to_le_bytes).concat();
+                assert_eq!(batch::shares_divisions(), vendor == *b"GenuineIntel");
+            }
         }
     }
 }

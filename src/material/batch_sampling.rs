@@ -239,14 +239,23 @@ fn mix_samples(
     }
 }
 
-/// The density of any material at `(wo[j], wi[j])` (`isa` available, the lengths equal).
-pub(super) fn pdf(
+/// The densities of a `Sum` or `Layered` material over the whole batch, block by block of
+/// [`BLOCK`] pairs (`isa` available, the lengths equal: the caller checked).
+pub(super) fn pdf_mixture(
     m: &Material<f32>,
     isa: Isa,
     wo: Directions<'_>,
     wi: Directions<'_>,
     out: &mut [f32],
 ) {
+    for (k, out) in out.chunks_mut(BLOCK).enumerate() {
+        let r = k * BLOCK..k * BLOCK + out.len();
+        pdf(m, isa, wo.range(r.clone()), wi.range(r), out);
+    }
+}
+
+/// The density of any material at `(wo[j], wi[j])` (`isa` available, the lengths equal).
+fn pdf(m: &Material<f32>, isa: Isa, wo: Directions<'_>, wi: Directions<'_>, out: &mut [f32]) {
     match m {
         Material::Sum(terms) => sum_pdf(terms, isa, wo, wi, out),
         Material::Layered(l) => {

@@ -213,7 +213,7 @@ macro_rules! models {
                     $($( Material::$v(m) => crate::batch::pdf_with(isa, m, wo, wi, out).is_ok(), )?)*
                     #[cfg(feature = "alloc")]
                     Material::Sum(_) | Material::Layered(_) => {
-                        batch_sampling::pdf(self, isa, wo, wi, out);
+                        batch_sampling::pdf_mixture(self, isa, wo, wi, out);
                         true
                     }
                 }

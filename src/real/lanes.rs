@@ -11,7 +11,8 @@
 //!
 //! Every operation is the correctly rounded instruction (`vaddps` … `vsqrtps`, `vfmadd`)
 //! and the transcendentals are the `f32` ones lane by lane, so a formula gives on these
-//! types the bits of [`super::F32Fma`] in every lane (tested below) — except
+//! types the bits of [`super::F32Fma`] in every lane (tested below; on the sharing backends
+//! [`ZmmShared`], [`YmmShared`], those of [`super::F32FmaSharedDiv`]) — except
 //! [`super::Bits::sqrt_rsqrt_refined`] and [`super::Bits::div_refined`], which are the
 //! hardware estimates with one refinement step on [`Zmm`] (exact on [`Ymm`]: AVX2's 12-bit
 //! estimates would need two steps, no cheaper than its exact instructions).

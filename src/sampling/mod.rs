@@ -136,6 +136,7 @@ pub trait SampleBrdf<R: Real, const N: usize>: Brdf<R, N> {
     /// and hands the concrete model to [`crate::batch::sample_with`], instead of matching on
     /// every sample out of line (README, Performance).
     #[inline]
+    #[must_use]
     fn sample_batch(
         &self,
         isa: crate::batch::Isa,
@@ -155,8 +156,11 @@ pub trait SampleBrdf<R: Real, const N: usize>: Brdf<R, N> {
     /// wrapper that changes the density must not forward it).
     ///
     /// The default returns `false`. [`crate::material::Material`] overrides it: a model
-    /// through its batch kernels, a `Sum` or `Layered` material by its parts' batches.
+    /// through its batch kernels, a `Sum` or `Layered` material by its parts' batches. A hook
+    /// for the entry points: to compute densities, call [`crate::batch::pdf_with`], which
+    /// runs any model (this returns `false` for most, leaving `out` unwritten).
     #[inline]
+    #[must_use]
     fn pdf_batch(
         &self,
         isa: crate::batch::Isa,
