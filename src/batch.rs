@@ -400,6 +400,11 @@ mod wide_form {
 /// [`crate::fresnel::AnyFresnel::ConductorShared`]) choose the same way; the pipelined
 /// passes run the [`F32Fma`] form everywhere.
 ///
+/// The same choice decides where a [`crate::fresnel::Conductor`] with
+/// [`crate::fast::HardwareEstimate`] takes its estimates on the explicit AVX-512 lanes: where
+/// this is `true` (divider-bound cores); elsewhere it keeps its exact operations (on an AMD
+/// EPYC Zen 4 its refinement steps made the gold workload 1.17× slower).
+///
 /// The environment variable `BRDF_SHARE_DIVISIONS` overrides the vendor check when it is
 /// `0` (never share) or `1` (share), read once: to measure both arrangements on one machine,
 /// and so the test suite runs the other CPU family's kernels (`.ci/run` runs

@@ -896,7 +896,11 @@ impl<const SQRT: usize, const RECIP: usize> SqrtFn for NewtonSqrtRecip<SQRT, REC
 ///   `n / d` is `vrcp14ps` + one Markstein correction: multiplies and adds on the FMA ports
 ///   instead of the square-root/division unit, which bounds GGX on Intel cores (README,
 ///   Performance). Results within a few ULP of [`ExactSqrt`] (`tests/batch.rs` states the
-///   bound), and not bit-identical to `eval`.
+///   bound), and not bit-identical to `eval`. One exception, chosen at run time with the
+///   kernel: a [`crate::fresnel::Conductor`] with this policy keeps its exact operations on
+///   cores that are not divider-bound ([`crate::batch::shares_divisions`] `false`: AMD),
+///   where its chained refinement steps cost more than the divider (see
+///   [`crate::fresnel::Conductor::with_policy`]).
 /// * Everywhere else (`eval` on any type, the portable and AVX2 kernels): exactly
 ///   [`ExactSqrt`], bit for bit — those have no vectorizable estimate instruction, and three
 ///   Newton steps from a bit trick ([`NewtonSqrtRecip`]) cost more than the exact

@@ -1275,6 +1275,16 @@ impl<R: Real, const N: usize, P: SqrtFn, D: DivisionPlan> Conductor<R, N, P, D> 
     /// The same conductor with its square roots and divisions taken by `P2` (for example
     /// [`crate::fast::NewtonSqrtRecip`]`<3, 3>`, relative error in `docs/tradeoffs.md`).
     ///
+    /// With [`crate::fast::HardwareEstimate`] the estimates act only on the batch kernels of
+    /// divider-bound cores (those where [`crate::batch::shares_divisions`] is `true`: Intel).
+    /// On the other cores' explicit lanes (AMD) the conductor keeps the exact square roots
+    /// and division, bit for bit: its two square roots and division form one dependency
+    /// chain per channel, and the refinement steps lengthen it. Measured on an AMD EPYC
+    /// (Zen 4, peer benchmark of the README): Cook-Torrance with estimates and this
+    /// conductor exact 427 M/s, with the conductor's estimates too 365 M/s, all exact 407
+    /// M/s. The Cook-Torrance half vector and final division keep their estimates on both
+    /// families.
+    ///
     /// ```
     /// use brdf::fast::NewtonSqrtRecip;
     /// use brdf::fresnel::{Conductor, FresnelTerm};
@@ -1426,6 +1436,18 @@ impl<R: Real, const N: usize, P: SqrtFn, D: DivisionPlan> FresnelTerm<R, N>
                 after *= den[i];
             }
             return out;
+        }
+        if P::HARDWARE_ESTIMATES && !R::SHARE_DIVISIONS {
+            // Explicit lanes of a core with a fast divider (not divider-bound: AMD): the
+            // estimates' refinement steps would lengthen this term's chain of two square
+            // roots and a division, which bounds the kernel there (see `with_policy`).
+            return crate::real::channels(
+                #[inline(always)]
+                |i| {
+                    self.consts(i)
+                        .reflectance_with::<ExactSqrt>(c, cos2_theta_d)
+                },
+            );
         }
         crate::real::channels(
             #[inline(always)]

@@ -308,7 +308,7 @@ where
 
 /// The workloads of the estimate tests: GGX + Schlick (α = 0.3), the rough gold conductor,
 /// and that conductor with [`HardwareEstimate`] everywhere (the half vector, the final
-/// division, the conductor's roots and divisions).
+/// division, the conductor's roots and divisions where the batch path shares divisions).
 #[allow(clippy::type_complexity)]
 fn estimate_workloads() -> (
     CookTorrance<f32, GgxIsotropic<f32>, Schlick<f32, 1>, SmithHeightCorrelated>,
@@ -338,6 +338,45 @@ fn estimate_workloads() -> (
     )
     .with_sqrt::<HardwareEstimate>();
     (ggx, gold, gold_estimate)
+}
+
+/// The conductor's estimates act on the AVX-512 lanes only where the batch path shares
+/// divisions (divider-bound cores): elsewhere the gold conductor with [`HardwareEstimate`]
+/// gives the exact conductor's bits, and with the estimates only in the Cook-Torrance half
+/// vector and final division the two models agree bit for bit. Both branches run in CI
+/// (`.ci/run` repeats this file with `BRDF_SHARE_DIVISIONS` flipped).
+#[test]
+fn conductor_estimates_follow_the_division_choice() {
+    let (_, gold, gold_estimate) = estimate_workloads();
+    let outer_only = gold.with_sqrt::<HardwareEstimate>();
+    if !Isa::Avx512.is_available() {
+        eprintln!("no AVX-512 here: the estimates do not run");
+        return;
+    }
+    let d = pairs(1031);
+    let wi = Directions::new(&d[0], &d[1], &d[2]);
+    let wo = Directions::new(&d[3], &d[4], &d[5]);
+    let run = |m: &dyn Fn([&mut [f32]; 3])| {
+        let mut out = [vec![0.0f32; 1031], vec![0.0f32; 1031], vec![0.0f32; 1031]];
+        let [a, b, c] = &mut out;
+        m([a.as_mut_slice(), b.as_mut_slice(), c.as_mut_slice()]);
+        out
+    };
+    let a = run(&|o| batch::eval_with(Isa::Avx512, &outer_only, wi, wo, o).unwrap());
+    let b = run(&|o| batch::eval_with(Isa::Avx512, &gold_estimate, wi, wo, o).unwrap());
+    let differ = (0..3)
+        .map(|c| (0..1031).filter(|&i| a[c][i] != b[c][i]).count())
+        .sum::<usize>();
+    let shared = batch::shares_divisions();
+    eprintln!("shares_divisions() = {shared}: {differ} values differ");
+    if shared {
+        assert!(differ > 0, "the conductor's estimates did not run");
+    } else {
+        assert_eq!(
+            differ, 0,
+            "the conductor took estimates on a fast-divider core"
+        );
+    }
 }
 
 /// GGX + Schlick and the rough gold conductor with [`HardwareEstimate`] (the half vector, the
