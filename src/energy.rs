@@ -1181,13 +1181,13 @@ pub fn dielectric_average_albedo_table<R: Real>(alpha: R, eta: R) -> R {
     let (iz, w) = dielectric_table::cell(dielectric_average_table_u(alpha, eta), nz);
     let weights = dielectric_table::catmull_rom(w);
     let k = side + iy * row + iz;
-    // Two loops, not a closure (see `erf_inv_giles` in `sampling::microfacet`).
+    // One loop over both rows, not a closure (see `erf_inv_giles` in `sampling::microfacet`);
+    // the indices are small integers, so `(k + b) + row` is exact.
     let (mut e0, mut e1) = (R::zero(), R::zero());
     for (b, &wb) in weights.iter().enumerate() {
-        e0 += wb * gather(avg, k + R::from_f64(b as f64));
-    }
-    for (b, &wb) in weights.iter().enumerate() {
-        e1 += wb * gather(avg, (k + row) + R::from_f64(b as f64));
+        let kb = k + R::from_f64(b as f64);
+        e0 += wb * gather(avg, kb);
+        e1 += wb * gather(avg, kb + row);
     }
     e0 + v * (e1 - e0)
 }
