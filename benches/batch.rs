@@ -7,7 +7,7 @@
 //!   check that the generic scalar path (`scalar_f32`) costs nothing (ratio ≥ 0.95);
 //! * `rough_conductor`: Mitsuba 3's `roughconductor` workload — isotropic GGX, separable
 //!   Smith G1·G1, exact conductor Fresnel with a complex IOR per RGB channel, times cos θo
-//!   (≥ 450 M evaluations/s);
+//!   (≥ 450 M evaluations/s); also with the conductor as `FittedConductor` (`batch_fitted*`);
 //! * `normalized_blinn_phong`: the seed's normalized Blinn-Phong, diffuse + specular, one
 //!   channel, with the exact `powf` and with `fast::pow_phong` (|relative error| ≤ 1e-5)
 //!   (≥ 0.7 G evaluations/s);
@@ -23,7 +23,7 @@ use std::hint::black_box;
 
 use brdf::batch::{self, Directions, Isa, Pipelined};
 use brdf::fast::{HardwareEstimate, NewtonSqrtRecip};
-use brdf::fresnel::{Conductor, Schlick};
+use brdf::fresnel::{Conductor, FittedConductor, Schlick};
 use brdf::masking::{SmithHeightCorrelated, SmithSeparable};
 use brdf::models::CookTorrance;
 use brdf::ndf::{Ggx, GgxIsotropic};
@@ -467,6 +467,30 @@ fn bench_rough_conductor(c: &mut Criterion) {
         "batch_hardware_estimate",
         batch::eval_with,
         &estimate,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    // The conductor fitted as a piecewise quintic (no square root or division in the
+    // Fresnel term), with the exact and the estimated geometry.
+    let fitted = FittedConductor::from_conductor(&m.0.fresnel).unwrap();
+    let fit = TimesCos(CookTorrance::new(m.0.ndf, fitted, SmithSeparable));
+    bench_isas(
+        &mut g,
+        "batch_fitted",
+        batch::eval_with,
+        &fit,
+        &wi,
+        &wo,
+        &mut out,
+    );
+    let fit_estimate = TimesCos(fit.0.with_sqrt::<HardwareEstimate>());
+    let name = "batch_fitted_hardware_estimate";
+    bench_isas(
+        &mut g,
+        name,
+        batch::eval_with,
+        &fit_estimate,
         &wi,
         &wo,
         &mut out,

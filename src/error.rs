@@ -38,6 +38,14 @@ pub enum Error {
         /// The number type it does not fit in, e.g. `"f32"`.
         number_type: &'static str,
     },
+    /// A fitted approximation (such as [`crate::fresnel::FittedConductor`]) of valid
+    /// parameters that misses its accuracy bound: the exact form should be used instead.
+    FitInaccurate {
+        /// The largest relative error the fit reached (`∞` for a NaN or a zero target).
+        max_error: f64,
+        /// The bound it had to meet.
+        tolerance: f64,
+    },
 }
 
 impl fmt::Display for Error {
@@ -61,6 +69,15 @@ impl fmt::Display for Error {
                 f,
                 "parameter `{param}` = {} does not fit in {number_type}",
                 Short(*value)
+            ),
+            Error::FitInaccurate {
+                max_error,
+                tolerance,
+            } => write!(
+                f,
+                "the fit's relative error {} exceeds its bound {}: use the exact form",
+                Short(*max_error),
+                Short(*tolerance)
             ),
         }
     }
@@ -158,6 +175,15 @@ pub(crate) fn in_range<S: crate::Scalar>(
 ) -> Result<S, Error> {
     let (lo, hi): (f64, f64) = (S::of(lo).into(), S::of(hi).into());
     check(param, value, domain, |v| (lo..=hi).contains(&v))
+}
+
+/// [`Error::FitInaccurate`].
+#[inline]
+pub(crate) fn fit_inaccurate(max_error: f64, tolerance: f64) -> Error {
+    Error::FitInaccurate {
+        max_error,
+        tolerance,
+    }
 }
 
 /// `value ∈ [0, ∞)`.

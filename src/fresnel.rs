@@ -94,6 +94,9 @@
 
 use core::marker::PhantomData;
 
+mod fitted;
+pub use fitted::{FIT_DEGREE, FIT_SEGMENTS, FIT_TOLERANCE, FittedConductor};
+
 use num_complex::Complex;
 
 use crate::error::{self, Error};

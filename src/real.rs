@@ -303,6 +303,17 @@ pub trait Bits: Sized + sealed::Sealed {
     /// correctly rounded `n / d`.
     fn div_refined(self, d: Self) -> Self;
 
+    /// `table[i]` lane by lane, for an integer-valued `self = i ∈ [0, 31]`: the coefficient
+    /// lookup of piecewise polynomials ([`crate::fresnel::FittedConductor`]), one table entry
+    /// per segment. On the batch path's explicit lanes it is a register permute (AVX-512
+    /// `vpermt2ps` over the two halves of the table; AVX2 four `vpermps` and three blends);
+    /// elsewhere an indexed load per lane, widened to the lane precision.
+    ///
+    /// Outside the domain (non-integer, negative, `≥ 32`, NaN) the result is some entry of
+    /// the table (on lanes the low five bits of the truncated index pick it; on scalars the
+    /// index saturates to `[0, 31]`): never out of bounds.
+    fn lookup32(self, table: &[f32; 32]) -> Self;
+
     /// Whether formulas that divide once per channel should share one division (computing
     /// the reciprocal of the product of the denominators, and each quotient from it with a
     /// few multiplications). `true` only for [`F32FmaSharedDiv`], the batch kernels' number
@@ -543,6 +554,11 @@ macro_rules! impl_scalar {
             fn div_refined(self, d: Self) -> Self {
                 self / d
             }
+            #[inline(always)]
+            fn lookup32(self, table: &[f32; 32]) -> Self {
+                // `as` saturates (NaN gives 0): in bounds for every input.
+                table[(self as usize).min(31)] as $t
+            }
         }
 
         impl Scalar for $t {
@@ -719,6 +735,13 @@ macro_rules! impl_lanes {
             fn div_refined(self, d: Self) -> Self {
                 self / d
             }
+            #[inline(always)]
+            fn lookup32(self, table: &[f32; 32]) -> Self {
+                let i = self.to_array();
+                <$v>::from(core::array::from_fn::<$t, $n, _>(|j| {
+                    table[(i[j] as usize).min(31)] as $t
+                }))
+            }
         }
     };
 }
@@ -885,6 +908,10 @@ macro_rules! fused_f32 {
             #[inline(always)]
             fn div_refined(self, d: Self) -> Self {
                 $t(self.0 / d.0)
+            }
+            #[inline(always)]
+            fn lookup32(self, table: &[f32; 32]) -> Self {
+                $t(<f32 as Bits>::lookup32(self.0, table))
             }
         }
     };

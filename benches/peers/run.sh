@@ -132,9 +132,12 @@ STATUS=0
 # with brdf::fast::NewtonSqrtRecip<3, 3> (square roots and divisions by refined estimates,
 # within a few ULP of the exact policy); -estimate: with brdf::fast::HardwareEstimate (the
 # AVX-512 estimate instructions and one refinement step on Isa::Avx512, exact elsewhere);
-# -estimate-shared: both (explicit lanes that share the division where shares_divisions()).
+# -estimate-shared: both (explicit lanes that share the division where shares_divisions());
+# -fit: the conductor as brdf::fresnel::FittedConductor (a piecewise quintic in cos θd fitted
+# at construction, within 2.5e-7 of the exact reflectance: no square root or division);
+# -estimate-fit: that with HardwareEstimate.
 for V in isotropic ggx isotropic-shared ggx-shared isotropic-newton ggx-newton isotropic-estimate \
-    isotropic-estimate-shared; do
+    isotropic-estimate-shared isotropic-fit isotropic-estimate-fit; do
     NDF=${V%%-*}
     POLICY=exact
     [ "$V" = "$NDF" ] || POLICY=${V#*-}
@@ -153,8 +156,10 @@ if [ "$SAMPLE" = 1 ]; then
         --warmup "$WARMUP" --out "$WORK/mitsuba-sample.bin" --timing "$WORK/mitsuba-sample.json"
     # vndf: visible normals (as Mitsuba); caps: the crate's default spherical caps; -shared:
     # the conductor with SharedDivision (as for eval); -estimate: with HardwareEstimate
-    # (explicit 16-lane registers and the estimate instructions on AVX-512).
-    for ST in vndf caps vndf-shared caps-shared vndf-estimate caps-estimate caps-estimate-shared; do
+    # (explicit 16-lane registers and the estimate instructions on AVX-512); -fit: the
+    # conductor as FittedConductor (as for eval).
+    for ST in vndf caps vndf-shared caps-shared vndf-estimate caps-estimate caps-estimate-shared \
+        vndf-fit caps-fit; do
         STRATEGY=${ST%%-*}
         POLICY=exact
         [ "$ST" = "$STRATEGY" ] || POLICY=${ST#*-}
@@ -184,7 +189,9 @@ VARIANTS = (("isotropic", "GgxIsotropic"), ("ggx", "Ggx"),
             ("isotropic-newton", "GgxIsotropic, NewtonSqrtRecip<3,3>"),
             ("ggx-newton", "Ggx, NewtonSqrtRecip<3,3>"),
             ("isotropic-estimate", "GgxIsotropic, HardwareEstimate"),
-            ("isotropic-estimate-shared", "GgxIsotropic, HardwareEstimate, SharedDivision"))
+            ("isotropic-estimate-shared", "GgxIsotropic, HardwareEstimate, SharedDivision"),
+            ("isotropic-fit", "GgxIsotropic, FittedConductor"),
+            ("isotropic-estimate-fit", "GgxIsotropic, HardwareEstimate, FittedConductor"))
 b, c = {}, {}
 for ndf, _ in VARIANTS:
     b[ndf], c[ndf] = load(f"brdf-eval-{ndf}.json"), load(f"compare-{ndf}.json")
@@ -227,7 +234,9 @@ if sample == "1":
                      ("caps-shared", "caps, shared division"),
                      ("vndf-estimate", "vis. normals, estimates"),
                      ("caps-estimate", "caps, estimates"),
-                     ("caps-estimate-shared", "caps, estimates, shared div.")):
+                     ("caps-estimate-shared", "caps, estimates, shared div."),
+                     ("vndf-fit", "vis. normals, fitted Fresnel"),
+                     ("caps-fit", "caps, fitted Fresnel")):
         t, e = load(f"brdf-sample-{st}.json"), load(f"compare-sample-{st}.json")
         print(f"  brdf, GgxIsotropic, {name:26} {rate(t['median_s']):8.1f}   "
               f"({t['isa']}; {s['wall_median_s'] / t['median_s']:.2f}x per call, "

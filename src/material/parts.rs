@@ -433,5 +433,7 @@ pub(crate) fn iso_alpha(isotropic: bool, e: Error) -> Error {
             value,
             number_type,
         },
+        // Names no parameter.
+        e @ Error::FitInaccurate { .. } => e,
     }
 }

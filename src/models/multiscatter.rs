@@ -32,7 +32,9 @@
 
 use super::{Brdf, Energy, Kinks, Properties, Reciprocity, masked, safe_dirs};
 use crate::energy::{self, Distribution};
-use crate::fresnel::{AnyFresnel, Conductor, Dielectric, F82Tint, FresnelTerm, NoFresnel, Schlick};
+use crate::fresnel::{
+    AnyFresnel, Conductor, Dielectric, F82Tint, FittedConductor, FresnelTerm, NoFresnel, Schlick,
+};
 use crate::masking::SmithHeightCorrelated;
 use crate::models::CookTorrance;
 use crate::ndf::{AnyNdf, Beckmann, Ggx, GgxIsotropic};
@@ -550,6 +552,17 @@ impl<S: Scalar, const N: usize, P: crate::fast::SqrtFn, D: crate::fresnel::Divis
     FresnelAverage<N> for Conductor<S, N, P, D>
 {
     /// [`energy::fresnel_average`] of the exact complex-IOR reflectance, per channel.
+    fn average(&self) -> [f64; N] {
+        by_quadrature(self)
+    }
+    fn normal_reflectance(&self) -> [f64; N] {
+        self.splat::<f64>().eval(1.0)
+    }
+}
+
+impl<S: Scalar, const N: usize> FresnelAverage<N> for FittedConductor<S, N> {
+    /// [`energy::fresnel_average`] of the fitted reflectance (within the fit's tolerance of
+    /// the exact conductor's), per channel.
     fn average(&self) -> [f64; N] {
         by_quadrature(self)
     }

@@ -99,6 +99,9 @@ pub trait Backend: Copy + Debug + Send + Sync + 'static {
     unsafe fn sqrt_rsqrt_refined(x: Self::V) -> (Self::V, Self::V);
     /// `n/d` for [`Bits::div_refined`].
     unsafe fn div_refined(n: Self::V, d: Self::V) -> Self::V;
+    /// `table[i]` per lane for [`Bits::lookup32`] (`i` integer-valued; the low five bits of
+    /// the truncated index pick the entry). `table` points to 32 readable `f32`.
+    unsafe fn lookup32(i: Self::V, table: *const f32) -> Self::V;
 }
 
 /// `LANES` `f32` lanes in one register of backend `B` (see the module docs for when one may
@@ -355,6 +358,10 @@ impl<B: Backend> Bits for Lanes<B> {
     fn div_refined(self, d: Self) -> Self {
         Lanes(unsafe { B::div_refined(self.0, d.0) })
     }
+    #[inline(always)]
+    fn lookup32(self, table: &[f32; 32]) -> Self {
+        Lanes(unsafe { B::lookup32(self.0, table.as_ptr()) })
+    }
     const SHARE_DIVISIONS: bool = B::SHARE_DIVISIONS;
 }
 
@@ -588,6 +595,16 @@ impl<const SHARED: bool> Backend for Avx512<SHARED> {
             _mm512_fmadd_ps(rem, r, q)
         }
     }
+    /// `vpermt2ps`: one permute over the table's two 16-entry halves (the index's bit 4
+    /// picks the half).
+    #[inline(always)]
+    unsafe fn lookup32(i: __m512, table: *const f32) -> __m512 {
+        unsafe {
+            let lo = _mm512_loadu_ps(table);
+            let hi = _mm512_loadu_ps(table.add(16));
+            _mm512_permutex2var_ps(lo, _mm512_cvttps_epi32(i), hi)
+        }
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -781,6 +798,24 @@ impl<const SHARED: bool> Backend for Avx2<SHARED> {
     unsafe fn div_refined(n: __m256, d: __m256) -> __m256 {
         unsafe { _mm256_div_ps(n, d) }
     }
+    /// Four `vpermps` (one per quarter of the table, by the index's low three bits) and
+    /// three blends (by its bits 3 and 4, shifted into the sign bits `vblendvps` reads).
+    #[inline(always)]
+    unsafe fn lookup32(i: __m256, table: *const f32) -> __m256 {
+        unsafe {
+            let i = _mm256_cvttps_epi32(i);
+            // No closure: it could stay out of line, outside the kernel's features.
+            let q0 = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table), i);
+            let q1 = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table.add(8)), i);
+            let q2 = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table.add(16)), i);
+            let q3 = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table.add(24)), i);
+            let bit3 = _mm256_castsi256_ps(_mm256_slli_epi32::<28>(i));
+            let bit4 = _mm256_castsi256_ps(_mm256_slli_epi32::<27>(i));
+            let low = _mm256_blendv_ps(q0, q1, bit3);
+            let high = _mm256_blendv_ps(q2, q3, bit3);
+            _mm256_blendv_ps(low, high, bit4)
+        }
+    }
 }
 
 #[cfg(test)]
@@ -834,6 +869,45 @@ mod tests {
             }
         }
         e
+    }
+
+    /// `lookup32` of every index 0 … 31 in every lane position, and out-of-domain indices
+    /// (the low five bits of the truncated value pick the entry), on `LANES`-wide lanes.
+    #[inline(always)]
+    fn lookup_errors<B: Backend>() -> usize {
+        let table: [f32; 32] = core::array::from_fn(|i| 100.0 + i as f32);
+        let mut wrong = 0;
+        for shift in 0..32usize {
+            let idx = Lanes::<B>::from_fn(|j| ((j + shift) % 32) as f32);
+            let v = idx.lookup32(&table);
+            for j in 0..B::LANES {
+                wrong += usize::from(v.lane(j) != table[(j + shift) % 32]);
+            }
+        }
+        // 33.7 truncates to 33, whose low five bits are 1.
+        let v = Lanes::<B>::splat(33.7).lookup32(&table);
+        wrong + usize::from(v.lane(0) != table[1])
+    }
+
+    #[target_feature(enable = "avx512f,avx512vl")]
+    fn lookup_errors_avx512() -> usize {
+        lookup_errors::<Avx512>()
+    }
+
+    #[target_feature(enable = "avx2,fma")]
+    fn lookup_errors_avx2() -> usize {
+        lookup_errors::<Avx2>()
+    }
+
+    #[test]
+    fn lookup32_reads_every_entry() {
+        // SAFETY: each call runs only where its features were detected.
+        if avx512() {
+            assert_eq!(unsafe { lookup_errors_avx512() }, 0);
+        }
+        if avx2() {
+            assert_eq!(unsafe { lookup_errors_avx2() }, 0);
+        }
     }
 
     /// Every float of `[1, 4)` (two binades: both parities of the exponent, which the

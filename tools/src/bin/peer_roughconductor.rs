@@ -31,7 +31,7 @@ use std::{fs, process};
 
 use brdf::batch::{self, BatchBrdf, BatchSample, Directions, Isa, SampleOut};
 use brdf::fast::{ExactSqrt, HardwareEstimate, NewtonSqrtRecip};
-use brdf::fresnel::Conductor;
+use brdf::fresnel::{Conductor, FittedConductor};
 use brdf::masking::SmithSeparable;
 use brdf::models::{CookTorrance, Properties};
 use brdf::ndf::{Ggx, GgxIsotropic};
@@ -70,7 +70,7 @@ impl<B: Splat> Splat for TimesCosThetaI<B> {
 }
 
 const USAGE: &str = "usage: peer_roughconductor --pairs FILE --values OUT --timing OUT.json \\
-    --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--policy exact|shared|newton|estimate|estimate-shared]
+    --alpha A --eta R,G,B --k R,G,B [--ndf isotropic|ggx] [--policy exact|shared|newton|estimate|estimate-shared|fit|estimate-fit]
     [--mode eval|sample] [--strategy vndf|caps] [--isa detect|portable|avx2|avx512]
     [--reps N] [--warmup N]
 
@@ -79,13 +79,14 @@ by benches/peers/peers.py gen), writes the values (3 channels) to OUT and the ti
 OUT.json. --policy newton takes the half vector, the final division and the conductor's
 square roots and divisions by brdf::fast::NewtonSqrtRecip<3, 3>, --policy estimate by
 brdf::fast::HardwareEstimate (vrsqrt14ps/vrcp14ps + one step on Isa::Avx512, exact
-elsewhere); --policy shared gives the
+elsewhere); --policy fit replaces the exact conductor by brdf::fresnel::FittedConductor
+(estimate-fit: with HardwareEstimate); --policy shared gives the
 conductor SharedDivision (one division for the three channels where
 brdf::batch::shares_divisions(), e.g. on Intel); --policy estimate-shared, both (explicit
 lanes sharing the division); default: exact.
 --mode sample times brdf::batch::sample on the viewer directions and uniforms of FILE
 (--strategy vndf: visible normals, as Mitsuba; caps: the crate's default spherical caps;
---policy exact, shared, estimate or estimate-shared) and writes wi (3 arrays), pdf and the weight (3 arrays). --isa picks the batch kernel
+--policy exact, shared, estimate, estimate-shared or fit) and writes wi (3 arrays), pdf and the weight (3 arrays). --isa picks the batch kernel
 (default: brdf::batch::Isa::detect()). Run by benches/peers/run.sh.";
 
 /// The command line.
@@ -324,8 +325,9 @@ fn sample_mode(a: &Args, p: &[Vec<f32>], gold: Conductor<f32, 3>) -> (Vec<f64>, 
                 .unwrap_or_else(|e| fail(e)),
             HardwareEstimate
         ),
+        "fit" => run!(fitted(&gold), ExactSqrt),
         other => fail(format!(
-            "--mode sample takes --policy exact, shared, estimate or estimate-shared, not {other:?}"
+            "--mode sample takes --policy exact, shared, estimate, estimate-shared or fit, not {other:?}"
         )),
     };
     (times, out.into())
@@ -401,8 +403,15 @@ fn eval_mode(
                 .unwrap_or_else(|e| fail(e)),
             HardwareEstimate
         ),
+        "fit" => run!(fitted(&gold), ExactSqrt),
+        "estimate-fit" => run!(fitted(&gold), HardwareEstimate),
         other => fail(format!(
-            "--policy {other:?}: expected exact, shared, newton, estimate or estimate-shared"
+            "--policy {other:?}: expected exact, shared, newton, estimate, estimate-shared, fit or estimate-fit"
         )),
     }
+}
+
+/// The workload's conductor fitted as a piecewise polynomial ([`FittedConductor`]).
+fn fitted(gold: &Conductor<f32, 3>) -> FittedConductor<f32, 3> {
+    FittedConductor::from_conductor(gold).unwrap_or_else(|e| fail(e))
 }

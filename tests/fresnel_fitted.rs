@@ -1,0 +1,246 @@
+//! Tests of `fresnel::FittedConductor`, the piecewise-polynomial conductor reflectance: its
+//! error against the `f64` closed form between the points its constructor checks, beside the
+//! error of the exact formula evaluated in `f32`; where it is accepted and refused; its
+//! domain handling; and the batch path (explicit lanes) against the scalar body.
+use brdf::batch::{self, Directions, Isa};
+use brdf::fresnel::{
+    Conductor, FIT_DEGREE, FIT_SEGMENTS, FIT_TOLERANCE, FittedConductor, FresnelTerm, conductor,
+};
+use brdf::ior::Preset;
+use brdf::masking::SmithSeparable;
+use brdf::models::CookTorrance;
+use brdf::ndf::GgxIsotropic;
+use brdf::real::{F32Fma, Splat};
+use brdf::{Brdf, Error, Vec3};
+
+/// Mitsuba 3's RGB gold (the peer benchmark's workload, `benches/peers`).
+const MITSUBA_GOLD: ([f32; 3], [f32; 3]) = (
+    [0.143_035_98, 0.375_307_08, 1.442_045_3],
+    [3.982_997, 2.385_556_4, 1.603_359_2],
+);
+
+/// The RGB IORs of every metal preset and Mitsuba's gold.
+fn metals() -> Vec<(String, [f32; 3], [f32; 3])> {
+    let mut m: Vec<_> = Preset::METALS
+        .iter()
+        .map(|p| {
+            let d = p.data();
+            (
+                p.name().to_string(),
+                d.eta.map(|x| x as f32),
+                d.k.map(|x| x as f32),
+            )
+        })
+        .collect();
+    m.push(("mitsuba gold".into(), MITSUBA_GOLD.0, MITSUBA_GOLD.1));
+    m
+}
+
+/// Largest relative error of `f` against the `f64` closed form over the channels, at
+/// `j/n` for `j = 0 … n` and at cosines below `1/n` down to `1e-30`.
+fn max_rel_error<const N: usize>(
+    f: impl Fn(f32) -> [f32; N],
+    eta: [f32; N],
+    k: [f32; N],
+    n: u32,
+) -> f64 {
+    let tiny = (1..=30).map(|e| 10f32.powi(-e));
+    let grid = (0..=n).map(|j| (f64::from(j) / f64::from(n)) as f32);
+    let mut worst = 0.0f64;
+    for c in grid.chain(tiny) {
+        let v = f(c);
+        for ch in 0..N {
+            let exact = conductor(f64::from(c), f64::from(eta[ch]), f64::from(k[ch]));
+            let rel = (f64::from(v[ch]) - exact).abs() / exact;
+            assert!(rel.is_finite(), "c = {c}: {} against {exact}", v[ch]);
+            worst = worst.max(rel);
+        }
+    }
+    worst
+}
+
+#[test]
+fn metals_stay_within_the_tolerance_between_the_checked_points() {
+    // 2²⁰ cosines: 256 between every two the constructor checked.
+    for (name, eta, k) in metals() {
+        let exact = Conductor::<f32, 3>::new(eta, k).unwrap();
+        let fitted = FittedConductor::from_conductor(&exact).unwrap();
+        let fit_err = max_rel_error(|c| fitted.eval(c), eta, k, 1 << 20);
+        let f32_err = max_rel_error(|c| exact.eval(c), eta, k, 1 << 20);
+        // The batch kernels' fused form (FMA Horner steps) too.
+        let fused = fitted.splat::<F32Fma>();
+        let fused_err = max_rel_error(|c| fused.eval(F32Fma(c)).map(|x| x.0), eta, k, 1 << 20);
+        assert!(fused_err <= FIT_TOLERANCE, "{name}, fused: {fused_err:e}");
+        println!(
+            "{name}: fit {fit_err:.3e} (fused {fused_err:.3e}, measured at construction {:.3e}), exact formula in f32 {f32_err:.3e}",
+            fitted.max_error()
+        );
+        assert!(fitted.max_error() <= FIT_TOLERANCE);
+        assert!(fit_err <= FIT_TOLERANCE, "{name}: {fit_err:e}");
+        // As accurate as the exact formula in f32, within one unit in the last place.
+        assert!(fit_err <= f32_err + f64::from(f32::EPSILON), "{name}");
+    }
+}
+
+#[test]
+fn f64_evaluation_keeps_the_f32_accuracy() {
+    let (eta, k) = MITSUBA_GOLD;
+    let fitted = FittedConductor::<f64, 3>::new(eta.map(f64::from), k.map(f64::from)).unwrap();
+    let mut worst = 0.0f64;
+    for j in 0..=100_000 {
+        let c = f64::from(j) / 100_000.0;
+        let v = fitted.eval(c);
+        for ch in 0..3 {
+            let exact = conductor(c, f64::from(eta[ch]), f64::from(k[ch]));
+            worst = worst.max((v[ch] - exact).abs() / exact);
+        }
+    }
+    assert!(worst <= FIT_TOLERANCE, "{worst:e}");
+}
+
+#[test]
+fn accepted_for_the_visible_range_metals() {
+    // The region the docs promise: η ∈ [0.03, 4.8] with k ∈ [0.5, 6.5], and k up to 9.5 for
+    // η ≤ 2.3 (log-spaced grids, corners included).
+    let log_grid = |lo: f64, hi: f64, n: u32| {
+        (0..=n).map(move |i| lo * (hi / lo).powf(f64::from(i) / f64::from(n)))
+    };
+    let rect = |eta_hi: f64, k_lo: f64, k_hi: f64| {
+        log_grid(0.03, eta_hi, 12)
+            .flat_map(move |eta| log_grid(k_lo, k_hi, 8).map(move |k| (eta, k)))
+    };
+    for (eta, k) in rect(4.8, 0.5, 6.5).chain(rect(2.3, 6.5, 9.5)) {
+        let fit = FittedConductor::<f64, 1>::new([eta], [k]);
+        assert!(fit.is_ok(), "η = {eta}, k = {k}: {fit:?}");
+    }
+}
+
+#[test]
+fn refused_where_the_reflectance_bends_sharply() {
+    // Near a dielectric's critical angle (η < 1, small k), a plain dielectric (TIR kink),
+    // and a large |η̃| (the pseudo-Brewster dip narrower than a segment).
+    for (eta, k) in [(0.5, 0.05), (0.7, 0.0), (30.0, 30.0)] {
+        match FittedConductor::<f32, 1>::new([eta], [k]) {
+            Err(Error::FitInaccurate {
+                max_error,
+                tolerance,
+            }) => {
+                assert!(max_error > tolerance, "η = {eta}, k = {k}");
+                assert_eq!(tolerance, FIT_TOLERANCE);
+                let msg = FittedConductor::<f32, 1>::new([eta], [k])
+                    .unwrap_err()
+                    .to_string();
+                assert!(msg.contains("use the exact form"), "{msg}");
+            }
+            other => panic!("η = {eta}, k = {k}: {other:?}"),
+        }
+    }
+    // Invalid IORs are reported as for the exact conductor.
+    assert!(matches!(
+        FittedConductor::<f32, 1>::new([f32::NAN], [1.0]),
+        Err(Error::NotFinite { .. })
+    ));
+    assert!(matches!(
+        FittedConductor::<f32, 1>::new([1.0], [-1.0]),
+        Err(Error::OutOfDomain { .. })
+    ));
+}
+
+#[test]
+fn segments_join_continuously_and_the_result_stays_in_range() {
+    let (eta, k) = MITSUBA_GOLD;
+    let fitted = FittedConductor::<f32, 3>::new(eta, k).unwrap();
+    // At a segment boundary the two neighbouring polynomials agree to the tolerance: the
+    // left one at u = 1 (the largest f32 below the boundary) and the right one at u = −1.
+    for s in 1..FIT_SEGMENTS {
+        let c = s as f32 / FIT_SEGMENTS as f32;
+        let (left, right) = (fitted.eval(c.next_down()), fitted.eval(c));
+        for ch in 0..3 {
+            let rel = f64::from((left[ch] - right[ch]).abs()) / f64::from(right[ch]);
+            assert!(
+                rel <= 2.0 * FIT_TOLERANCE,
+                "segment {s}, channel {ch}: {rel:e}"
+            );
+        }
+    }
+    // Magnitude taken, clamped to [0, 1]; NaN-free for every input.
+    for c in [-1.0, -0.3, 1.5, f32::INFINITY, -0.0, f32::MIN_POSITIVE] {
+        let v = fitted.eval(c);
+        let w = fitted.eval(c.abs().min(1.0));
+        assert_eq!(v, w, "c = {c}");
+        assert!(v.iter().all(|x| (0.0..=1.0).contains(x)), "c = {c}: {v:?}");
+    }
+    assert!(
+        fitted
+            .eval(f32::NAN)
+            .iter()
+            .all(|x| (0.0..=1.0).contains(x))
+    );
+    assert_eq!(FIT_DEGREE, 5);
+}
+
+#[test]
+fn batch_equals_the_scalar_body_on_every_instruction_set() {
+    // Cook-Torrance with the fitted conductor, on pairs that cover the hemisphere
+    // (a warped grid, grazing rows included).
+    let (eta, k) = MITSUBA_GOLD;
+    let model = CookTorrance::new(
+        GgxIsotropic::<f32>::new(0.3).unwrap(),
+        FittedConductor::new(eta, k).unwrap(),
+        SmithSeparable,
+    );
+    let n = 16 * 37 + 5;
+    let dir = |i: usize, salt: f32| {
+        let u = ((i as f32 + 0.5) / n as f32 + salt).fract();
+        let v = ((i as f32 * 0.618_034) + salt).fract();
+        let z = 1.0 - u;
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        let phi = std::f32::consts::TAU * v;
+        Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    };
+    let wi: Vec<Vec3<f32>> = (0..n).map(|i| dir(i, 0.0)).collect();
+    let wo: Vec<Vec3<f32>> = (0..n).map(|i| dir(i, 0.37)).collect();
+    let split = |w: &[Vec3<f32>]| -> [Vec<f32>; 3] {
+        [
+            w.iter().map(|d| d.x).collect(),
+            w.iter().map(|d| d.y).collect(),
+            w.iter().map(|d| d.z).collect(),
+        ]
+    };
+    let (i3, o3) = (split(&wi), split(&wo));
+    let fused = model.splat::<F32Fma>();
+    for isa in Isa::ALL {
+        if !isa.is_available() {
+            continue;
+        }
+        let mut out = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        let [r, g, b] = &mut out;
+        batch::eval_with(
+            isa,
+            &model,
+            Directions::new(&i3[0], &i3[1], &i3[2]),
+            Directions::new(&o3[0], &o3[1], &o3[2]),
+            [r, g, b],
+        )
+        .unwrap();
+        for j in 0..n {
+            // The portable loop runs the f32 model, the others its fused form.
+            let want: [f32; 3] = if isa == Isa::Portable {
+                model.eval(wi[j], wo[j])
+            } else {
+                let w = fused.eval(
+                    Vec3::new(F32Fma(wi[j].x), F32Fma(wi[j].y), F32Fma(wi[j].z)),
+                    Vec3::new(F32Fma(wo[j].x), F32Fma(wo[j].y), F32Fma(wo[j].z)),
+                );
+                w.map(|x| x.0)
+            };
+            for ch in 0..3 {
+                assert_eq!(
+                    out[ch][j].to_bits(),
+                    want[ch].to_bits(),
+                    "{isa:?}, pair {j}, channel {ch}"
+                );
+            }
+        }
+    }
+}
