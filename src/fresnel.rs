@@ -101,7 +101,7 @@
 use core::marker::PhantomData;
 
 mod fitted;
-pub use fitted::{FIT_DEGREE, FIT_SEGMENTS, FIT_TOLERANCE, FittedConductor};
+pub use fitted::{FIT_CHECK_BOUND, FIT_DEGREE, FIT_SEGMENTS, FIT_TOLERANCE, FittedConductor};
 
 use num_complex::Complex;
 
