@@ -1588,6 +1588,7 @@ impl<R: Real, const N: usize> FresnelTerm<R, N> for NoFresnel {
 ///
 /// Build one with `From`: `AnyFresnel::from(Dielectric::<f32>::new(1.5)?)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum AnyFresnel<R> {
     /// The exact [`Dielectric`] (the same IOR for every channel).
     Dielectric(Dielectric<R, 3>),

@@ -639,6 +639,7 @@ impl<R: Real, D: Ndf<R>> Masking<R, D> for Implicit {
     derive(serde::Serialize, serde::Deserialize),
     serde(rename_all = "snake_case", expecting = "a masking term name")
 )]
+#[non_exhaustive]
 pub enum AnyMasking {
     /// [`SmithHeightCorrelated`] (the default).
     #[default]

@@ -1308,6 +1308,7 @@ pub fn beckmann_alpha_to_ggx_alpha<R: Real>(alpha: R) -> R {
 ///
 /// Build one with `From`: `AnyNdf::from(Ggx::<f32>::new(0.3)?)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum AnyNdf<R> {
     /// [`Ggx`] (isotropic or anisotropic).
     Ggx(Ggx<R>),

@@ -121,6 +121,7 @@ pub(crate) use crate::ior::Preset;
 /// Deserializes from a number or an array of 3 (the values), `{ preset = "gold" }`, or
 /// `{ eta = …, k = … }` (`k` optional, each a number or 3 numbers).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Reflectance {
     /// The reflectance itself, per channel in `[0, 1]`.
     Value(Rgb),
@@ -270,6 +271,7 @@ impl<'de> Deserialize<'de> for Reflectance {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 #[serde(expecting = "an NDF name (`ggx` or `beckmann`)")]
+#[non_exhaustive]
 pub enum NdfDesc {
     /// [`Ggx`] (Trowbridge-Reitz).
     Ggx,
@@ -305,6 +307,7 @@ impl NdfDesc {
 #[serde(
     expecting = "a Fresnel term: `{ preset = … }`, `{ dielectric = … }`, `{ conductor = … }`, `{ schlick = … }` or `\"one\"`"
 )]
+#[non_exhaustive]
 pub enum FresnelDesc {
     /// The exact Fresnel term of a preset.
     Preset(Preset),
