@@ -148,7 +148,7 @@ macro_rules! models {
         /// Evaluating matches on the variant, a per-material constant, then runs the model's
         /// own branch-free body.
         #[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
+        #[non_exhaustive]
         pub enum Material<R> {
             $($( $(#[$doc])* $v($t), )?)*
             /// The sum of the terms (feature `alloc`); see [`crate::models::Sum`].
