@@ -310,8 +310,9 @@ pub trait Bits: Sized + sealed::Sealed {
     /// elsewhere an indexed load per lane, widened to the lane precision.
     ///
     /// Outside the domain (non-integer, negative, `≥ 32`, NaN) the result is some entry of
-    /// the table (on lanes the low five bits of the truncated index pick it; on scalars the
-    /// index saturates to `[0, 31]`): never out of bounds.
+    /// the table, never out of bounds: on the batch path's explicit lanes the low five bits
+    /// of the truncated index pick it (NaN gives entry 0, −1 entry 31); on scalars and the
+    /// `wide` lane types the index saturates to `[0, 31]` (NaN gives entry 0).
     fn lookup32(self, table: &[f32; 32]) -> Self;
 
     /// Whether formulas that divide once per channel should share one division (computing

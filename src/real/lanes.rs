@@ -884,9 +884,14 @@ mod tests {
                 wrong += usize::from(v.lane(j) != table[(j + shift) % 32]);
             }
         }
-        // 33.7 truncates to 33, whose low five bits are 1.
-        let v = Lanes::<B>::splat(33.7).lookup32(&table);
-        wrong + usize::from(v.lane(0) != table[1])
+        // Outside the domain the low five bits of the truncated index pick the entry: 33.7
+        // truncates to 33 (entry 1), −1 to 0xFFFF_FFFF (31), NaN to 0x8000_0000 (0).
+        let odd = [(33.7, 1), (-1.0, 31), (f32::NAN, 0)];
+        for (x, want) in odd {
+            let v = Lanes::<B>::splat(x).lookup32(&table);
+            wrong += (0..B::LANES).filter(|&j| v.lane(j) != table[want]).count();
+        }
+        wrong
     }
 
     #[target_feature(enable = "avx512f,avx512vl")]
