@@ -324,6 +324,34 @@ fn min_positive<R: Real>() -> R {
     })
 }
 
+/// The `j`-th of `K` Chebyshev–Gauss nodes, `x_j = cos(π (j + ½)/K)` (`j = 0 … K − 1`,
+/// descending from near 1): where the fitted tables of the crate
+/// ([`crate::fresnel::FittedConductor`], `models::AlbedoFit`) sample their function.
+pub(crate) fn chebyshev_node(j: usize, k: usize) -> f64 {
+    Real::cos(core::f64::consts::PI * (j as f64 + 0.5) / k as f64)
+}
+
+/// The coefficients `c_i` of the degree-`K − 1` polynomial `Σ c_i T_i(x)` that interpolates
+/// `values[j]` at the nodes [`chebyshev_node`]`(j, K)`, by the discrete orthogonality of the
+/// `T_i` there (J. C. Mason, D. C. Handscomb, *Chebyshev Polynomials*, 2003, §6.3):
+///
+/// ```text
+/// c_i = (2/K) Σ_j values[j] · cos(π i (j + ½)/K),   c_0 halved
+/// ```
+pub(crate) fn chebyshev_coefficients<const K: usize>(values: &[f64; K]) -> [f64; K] {
+    let k = K as f64;
+    let mut coeffs: [f64; K] = core::array::from_fn(|i| {
+        let mut s = 0.0;
+        for (j, v) in values.iter().enumerate() {
+            let angle = core::f64::consts::PI * i as f64 * (j as f64 + 0.5) / k;
+            s += v * Real::cos(angle);
+        }
+        2.0 * s / k
+    });
+    coeffs[0] *= 0.5;
+    coeffs
+}
+
 /// `c[0] + c[1]·x + … + c[k]·x^k` by Horner's rule (the coefficient slice is a constant, so
 /// the loop unrolls).
 #[inline(always)]

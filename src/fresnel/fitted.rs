@@ -6,7 +6,7 @@ use core::marker::PhantomData;
 
 use super::{Conductor, DivisionPlan, FresnelTerm, conductor};
 use crate::error::{self, Error};
-use crate::fast::SqrtFn;
+use crate::fast::{SqrtFn, chebyshev_coefficients, chebyshev_node};
 use crate::real::{F32Fma, Splat};
 use crate::{Real, Scalar};
 
@@ -189,13 +189,8 @@ impl<S: Scalar, const N: usize> FittedConductor<S, N> {
                 for f in pair {
                     let exact = conductor(f64::from(c), eta, k);
                     let err = (f64::from(f) - exact).abs();
-                    let rel = if err == 0.0 {
-                        0.0
-                    } else if exact > 0.0 {
-                        err / exact
-                    } else {
-                        f64::INFINITY
-                    };
+                    // 0/0 where both vanish; err/0 = ∞ where only the fit does not.
+                    let rel = if err == 0.0 { 0.0 } else { err / exact };
                     // A NaN counts as infinitely wrong.
                     worst = if rel.is_nan() {
                         f64::INFINITY
@@ -223,22 +218,15 @@ fn fit_channel(eta: f64, k: f64) -> Tables {
             cheb[j + 1][p] = up - cheb[j - 1][p];
         }
     }
-    // Chebyshev points u_m = cos θ_m, θ_m = π(m + ½)/M.
-    let theta: [f64; M] =
-        core::array::from_fn(|m| core::f64::consts::PI * (m as f64 + 0.5) / M as f64);
     let mut tables = [Row([0.0f32; FIT_SEGMENTS]); M];
     for s in 0..FIT_SEGMENTS {
+        // The reflectance at the segment's Chebyshev points, u_m ↦ c = (s + (u_m + 1)/2)/32.
         let f: [f64; M] = core::array::from_fn(|m| {
-            let u = Real::cos(theta[m]);
+            let u = chebyshev_node(m, M);
             let c = (s as f64 + (u + 1.0) * 0.5) / FIT_SEGMENTS as f64;
             conductor(c, eta, k)
         });
-        // Chebyshev coefficients by the discrete orthogonality of T_j at these points:
-        // b_j = (2/M) Σ_m f_m cos(j θ_m), b_0 halved.
-        let b: [f64; M] = core::array::from_fn(|j| {
-            let sum: f64 = (0..M).map(|m| f[m] * Real::cos(j as f64 * theta[m])).sum();
-            sum * 2.0 / M as f64 * if j == 0 { 0.5 } else { 1.0 }
-        });
+        let b = chebyshev_coefficients(&f);
         for (p, row) in tables.iter_mut().enumerate() {
             let a: f64 = (0..M).map(|j| b[j] * cheb[j][p]).sum();
             row.0[s] = a as f32;

@@ -193,17 +193,7 @@ impl<S: Scalar> AlbedoFit<S> {
         for (j, v) in values.iter_mut().enumerate() {
             *v = energy::directional_albedo(distribution, alpha, mu_of_t(alpha, node(j)))?;
         }
-        let mut coeffs = [0.0; FIT_TERMS];
-        let k = FIT_TERMS as f64;
-        for (i, c) in coeffs.iter_mut().enumerate() {
-            let mut s = 0.0;
-            for (j, v) in values.iter().enumerate() {
-                let angle = core::f64::consts::PI * i as f64 * (j as f64 + 0.5) / k;
-                s += v * Real::cos(angle);
-            }
-            *c = 2.0 * s / k;
-        }
-        coeffs[0] *= 0.5;
+        let coeffs = crate::fast::chebyshev_coefficients(&values);
         Ok(Self::from_coefficients(distribution, alpha, coeffs))
     }
 
@@ -387,7 +377,7 @@ impl<S: Scalar> Splat for AlbedoFit<S> {
 
 /// The `j`-th Chebyshev-Gauss node `cos(π (j + ½)/K)`.
 fn node(j: usize) -> f64 {
-    Real::cos(core::f64::consts::PI * (j as f64 + 0.5) / FIT_TERMS as f64)
+    crate::fast::chebyshev_node(j, FIT_TERMS)
 }
 
 /// The inverse of the warp: `μ(t) = α (1 + t) / (1 + 2α − t)`.
